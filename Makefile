@@ -1,0 +1,105 @@
+# swell - ocean renderer for OpenGL ES 2 class GPUs.  `make run`, `make test`; see README.md.
+
+# ---- knobs ---------------------------------------------------------------------------------
+# C compiler (clang is used automatically for SAN= and fuzz builds if you set CC=clang)
+CC ?= cc
+# optimisation for the programs and the library
+OPT ?= -O2
+# sanitizers, e.g. SAN=address,undefined (builds into its own directory)
+SAN ?=
+# where objects and programs go
+BUILD ?= build/$(if $(SAN),san,rel)
+# where `make run` bakes the default tables
+TABLES_DIR ?= build/tables/default
+# seconds per fuzz target for `make fuzz`
+FUZZ_SECONDS ?= 30
+# ---------------------------------------------------------------------------------------------
+
+PKGS := fftw3f libpng zlib cglm egl glesv2 gbm libdrm libinput libudev
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+
+WARN := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Werror=implicit-function-declaration \
+        -Wno-unused-parameter
+SANFLAGS := $(if $(SAN),-fsanitize=$(SAN) -fno-omit-frame-pointer -fno-sanitize-recover=all,)
+CFLAGS ?= -g
+ALL_CFLAGS = $(WARN) $(OPT) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
+LDLIBS_ALL = $(PKG_LIBS) -lm -lpthread
+
+LIB_SRC := $(filter-out src/swell.c,$(wildcard src/*.c))
+LIB_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
+LIB := $(BUILD)/libswell.a
+
+UNIT_SRC := $(wildcard tests/unit/test_*.c)
+UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+FRAME_SRC := $(wildcard tests/frame/test_*.c)
+FRAME_BIN := $(FRAME_SRC:tests/frame/%.c=$(BUILD)/tests/%)
+
+SWELL := $(BUILD)/swell
+SWELL_BAKE := $(BUILD)/swell-bake
+
+.PHONY: all deps run test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean
+
+all: $(SWELL_BAKE) $(if $(wildcard src/swell.c),$(SWELL),)
+
+deps:
+	@tools/install-deps.sh
+
+$(BUILD)/obj/%.o: src/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(BUILD)/tools/%.o: tools/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(BUILD)/tests/%.o: tests/unit/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Itests -c $< -o $@
+
+$(BUILD)/tests/%.o: tests/frame/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Itests -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@
+	ar rcs $@ $^
+
+$(SWELL_BAKE): $(BUILD)/tools/swell-bake.o $(LIB)
+	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+
+$(SWELL): $(BUILD)/obj/swell.o $(LIB)
+	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+
+$(BUILD)/tests/%: $(BUILD)/tests/%.o $(LIB)
+	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL) -lcmocka
+
+# ---- the two commands ------------------------------------------------------------------------
+run: deps all
+	@tools/run.sh $(BUILD) $(TABLES_DIR)
+
+test: deps
+	$(MAKE) test-unit
+	$(MAKE) test-unit-O0
+	$(MAKE) test-shaders
+	$(MAKE) test-frame
+	@echo "make test: all suites passed"
+
+test-unit: $(UNIT_BIN) $(SWELL_BAKE)
+	@tools/run-tests.sh unit $(BUILD) $(UNIT_BIN)
+
+# CPU numerics again without optimisation (catches UB that -O2 hides and vice versa)
+test-unit-O0:
+	$(MAKE) OPT=-O0 BUILD=$(BUILD)-O0 test-unit
+
+test-shaders:
+	@tools/validate-shaders.sh
+
+test-frame: $(FRAME_BIN) $(if $(wildcard src/swell.c),$(SWELL),)
+	@tools/run-tests.sh frame $(BUILD) $(FRAME_BIN)
+
+clean:
+	rm -rf build
+
+-include $(LIB_OBJ:.o=.d) $(UNIT_BIN:=.d) $(FRAME_BIN:=.d)

@@ -1,0 +1,40 @@
+/* camera.h - the viewer: position, heading, pitch; matrices; scripted paths.
+ *
+ * Conventions (stated once, used everywhere): world x east, y north, z up, right-handed, metres.
+ * Heading: degrees CCW from +x (0 looks east, 90 north). Pitch: degrees, negative looks down.
+ * Matrices: cglm column-major mat4, OpenGL clip space (NDC z in [-1, 1]), radians inside.
+ * The renderer works camera-relative: world positions minus the camera's, so nothing a shader
+ * sees grows with distance (fp16 safety, DESIGN.md).
+ */
+#ifndef SWELL_CAMERA_H
+#define SWELL_CAMERA_H
+
+#include <cglm/cglm.h>
+
+struct camera {
+    double pos[3];          /* world position, m (z = altitude above mean sea level) */
+    float heading_deg;      /* default 0 */
+    float pitch_deg;        /* default -10 */
+    float fov_y_deg;        /* vertical field of view; default 45 */
+    float near_m, far_m;    /* clip planes; default 0 = chosen from altitude */
+};
+
+enum camera_path {
+    CAMERA_PATH_NONE = 0,   /* fixed camera as given */
+    CAMERA_PATH_SURFACE,    /* 5 m above the sea, slowly turning */
+    CAMERA_PATH_1KM,        /* 1 km altitude, looking at the horizon */
+    CAMERA_PATH_10KM,       /* 10 km altitude */
+    CAMERA_PATH_COUNT
+};
+
+void camera_defaults(struct camera *c);
+/* Camera of a scripted path at time t_s (paths loop). */
+void camera_path_at(int path, double t_s, struct camera *out);
+int camera_path_from_name(const char *name);   /* CAMERA_PATH_* or -1 */
+const char *camera_path_name(int path);
+
+/* Camera-relative view (translation removed) and projection for an aspect ratio. */
+void camera_view_rel(const struct camera *c, mat4 view);
+void camera_projection(const struct camera *c, float aspect, mat4 proj);
+
+#endif

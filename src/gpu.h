@@ -1,0 +1,61 @@
+/* gpu.h - the GL device: capability probe, tier choice, and the one accounting point for every
+ * texture and buffer allocation (DESIGN.md "Budgets").
+ *
+ * Tiers (DESIGN.md): GLES2_MIN assumes nothing beyond GLES 2.0 with no vertex texture fetch, no
+ * float textures, mediump fragment shaders, no derivatives, no texture LOD in the fragment
+ * shader, POT textures, 8 texture units. A forced tier may be lower than the context offers,
+ * never higher; code must consult caps (never the context) so a forced tier is honoured.
+ */
+#ifndef SWELL_GPU_H
+#define SWELL_GPU_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <GLES2/gl2.h>
+#include "err.h"
+
+enum gpu_tier { TIER_GLES2_MIN = 0, TIER_GLES2_EXT, TIER_GLES3, TIER_COUNT };
+
+struct gpu_caps {
+    int tier;                   /* enum gpu_tier in force */
+    int tier_available;         /* highest the context could do */
+    int texture_units;          /* fragment units usable (min(real, 8) on GLES2_MIN) */
+    int vertex_texture_units;   /* 0 on GLES2_MIN */
+    int half_float;             /* half-float textures usable (filtering too) */
+    int derivatives;            /* OES_standard_derivatives or GLES3 */
+    int texture_lod;            /* EXT_shader_texture_lod or GLES3 textureGrad/Lod */
+    int glsl300;                /* may compile #version 300 es */
+    int max_texture_size;
+    char vendor[64], renderer[128], version[128];
+};
+
+struct gpu {
+    struct gpu_caps caps;
+    uint64_t budget_bytes;      /* refuse allocations past this; 0 = no limit */
+    uint64_t bytes;             /* accounted now */
+    uint64_t peak_bytes;
+};
+
+const char *gpu_tier_name(int tier);       /* "gles2-min" */
+int gpu_tier_from_name(const char *name);  /* TIER_* or -1 */
+
+/* Probe the current context; forced_tier -1 = best available. Fails if forced > available. */
+int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell_err *err);
+
+/* Accounting: check first (before allocating), then record; release on delete. */
+int  gpu_account(struct gpu *g, uint64_t bytes, const char *what, struct swell_err *err);
+void gpu_release(struct gpu *g, uint64_t bytes);
+
+/* Texture helpers going through the accounting point. format: enum table_format.
+ * levels 1 = no mips. Allocates storage (NULL data), wrap REPEAT or CLAMP by `repeat`. */
+int  gpu_texture_create(struct gpu *g, int width, int height, int levels, int format, int repeat,
+                        const char *what, GLuint *tex, struct swell_err *err);
+void gpu_texture_destroy(struct gpu *g, GLuint *tex);
+int  gpu_buffer_create(struct gpu *g, GLenum target, size_t bytes, GLenum usage, const char *what,
+                       GLuint *buf, struct swell_err *err);
+void gpu_buffer_destroy(struct gpu *g, GLuint *buf);
+
+/* glGetError() drained into err with the call site named; 0 if none. */
+int gpu_check(const char *where, struct swell_err *err);
+
+#endif

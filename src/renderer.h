@@ -1,0 +1,53 @@
+/* renderer.h - draws the ocean from baked tables into the bound framebuffer.
+ *
+ * Knows nothing of KMS or surfaceless (platform.h). Uploads and accounts every GL object
+ * through gpu.h; the frame loop allocates nothing. Paths chosen from gpu caps (tier), printed
+ * through renderer_describe().
+ */
+#ifndef SWELL_RENDERER_H
+#define SWELL_RENDERER_H
+
+#include <stddef.h>
+#include "camera.h"
+#include "err.h"
+#include "gpu.h"
+#include "tables.h"
+
+enum render_quality { QUALITY_HIGH = 0, QUALITY_LOW, QUALITY_COUNT };
+enum geometry_kind { GEOMETRY_GRID = 0, GEOMETRY_PATCHES, GEOMETRY_COUNT };
+
+struct renderer_desc {
+    const struct swell_tables *tables;  /* not owned; must outlive the renderer */
+    struct gpu *gpu;                    /* not owned; context current */
+    const char *shader_dir;             /* default "shaders_gles" */
+    int quality;                        /* enum render_quality. default HIGH */
+    int geometry;                       /* enum geometry_kind. default GRID */
+    int grid_w, grid_h;                 /* projected-grid vertices; default 0 = 160 x 120 */
+    float sun_elev_deg;                 /* sun elevation above the horizon; default 0 = 30 */
+    float sun_azim_deg;                 /* sun azimuth, CCW from +x; default 0 */
+    float exposure;                     /* tone-mapping exposure; default 0 = automatic */
+};
+
+struct renderer_stats {
+    uint64_t gpu_bytes;                 /* accounted GPU bytes held by the renderer */
+    uint64_t cpu_bytes_per_frame;       /* bytes streamed to the GPU each frame */
+    int vertices, triangles;
+};
+
+struct renderer;
+
+int  renderer_create(const struct renderer_desc *d, struct renderer **out, struct swell_err *err);
+/* Draw one frame at time t_s (s) into the framebuffer bound now, viewport width x height. */
+int  renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
+                    int height, struct swell_err *err);
+void renderer_get_stats(const struct renderer *r, struct renderer_stats *out);
+/* One line per choice made (tier, geometry path, texture path, shading) into buf. */
+void renderer_describe(const struct renderer *r, char *buf, size_t size);
+void renderer_destroy(struct renderer *r);
+
+const char *render_quality_name(int q);
+int render_quality_from_name(const char *name);
+const char *geometry_kind_name(int g);
+int geometry_kind_from_name(const char *name);
+
+#endif
