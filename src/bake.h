@@ -19,4 +19,13 @@ struct bake_opts {
 int swell_bake(const struct seastate *state, const struct bake_opts *opts,
                struct swell_tables *out, struct swell_err *err);
 
+/* GPU bytes the renderer holds besides the tables' own bytes: the streamed per-pattern textures
+ * (one frame each, with mips) plus a fixed reserve for the sky map (256^2 RGBA8 + mips), the
+ * grid's vertex/index buffers and the Fresnel textures' upload. The renderer checks that what it
+ * actually allocates stays within this (tests/frame). */
+#define SWELL_RENDERER_RESERVE_BYTES (1536u * 1024u)
+uint64_t bake_resident_bytes(int patterns, int n_fs);
+/* Bytes of all tables for a configuration (what the budget charges besides the resident part). */
+uint64_t bake_table_bytes(int patterns, int n_fs, int n_geo, int frames);
+
 #endif

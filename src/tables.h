@@ -75,6 +75,9 @@ struct swell_tables {
     float lambda_t;         /* whitecap threshold on lambda_min (Tessendorf 2023 alg. 1) */
     float whitecap_fraction_model;     /* W from the wind-speed model */
     float whitecap_fraction_measured;  /* Tessendorf 2023 eq. 9 on the baked realization */
+    float whitecap_epsilon; /* Dupuy 2012 eq. 3 threshold on the Jacobian j, chosen so that the
+                               Gaussian coverage of eq. 6 equals the instantaneous breaking
+                               fraction <Theta> of Tessendorf eq. 12 */
     int count;
     struct swell_table table[SWELL_MAX_TABLES];
 };
