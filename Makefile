@@ -32,6 +32,7 @@ LIB := $(BUILD)/libswell.a
 
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+CLI_TESTS := $(wildcard tests/cli/test_*.sh)
 FRAME_SRC := $(wildcard tests/frame/test_*.c)
 FRAME_BIN := $(FRAME_SRC:tests/frame/%.c=$(BUILD)/tests/%)
 
@@ -87,7 +88,7 @@ test: deps
 	@echo "make test: all suites passed"
 
 test-unit: $(UNIT_BIN) $(SWELL_BAKE)
-	@tools/run-tests.sh unit $(BUILD) $(UNIT_BIN)
+	@tools/run-tests.sh unit $(BUILD) $(UNIT_BIN) $(CLI_TESTS)
 
 # CPU numerics again without optimisation (catches UB that -O2 hides and vice versa)
 test-unit-O0:

@@ -116,7 +116,10 @@ static int cmp_float(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Fraction of sorted samples below v (the empirical CDF of Tessendorf eq. 12). */
+/* Fraction of sorted samples below v: the empirical CDF of Tessendorf eq. 12, but over all
+ * samples. whitecap_cdf() follows eq. 12 literally (lambda_min >= 0 only); the foam update of
+ * eq. 7 fires on negative lambda_min too (folded crests), so the fraction the threshold targets
+ * must count them or the measured fraction (eq. 9) overshoots the model. */
 static double cdf_sorted(const float *sorted, size_t n, float v)
 {
     size_t lo = 0, hi = n;
@@ -128,12 +131,6 @@ static double cdf_sorted(const float *sorted, size_t n, float v)
             hi = mid;
     }
     return (double)lo / (double)n;
-}
-
-/* Tessendorf eq. 11: steady-state fraction from the instantaneous one, alpha = e^{-dt/T}. */
-static double fraction_from_theta(double theta, double alpha)
-{
-    return theta / (1.0 - alpha * (1.0 - theta));
 }
 
 struct pattern_work {
@@ -205,7 +202,7 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     if (!w->slope || !w->white || !w->disp || !w->lmin || !w->lmin_sorted)
         return swell_fail(err, SWELL_E_NOMEM, "pattern %d: cannot allocate %zu floats of fields",
                           index, chain * 2 + texels * 6 * (size_t)F);
-    double inv_n = 1.0 / (double)s->patterns, ksum = 0.0, ksum2 = 0.0;
+    double ksum = 0.0, ksum2 = 0.0;
     for (int f = 0; f < F; f++) {
         struct ocean_fields fl;
         if ((r = ocean_eval(w->ocean, f, &fl, err)))
@@ -216,8 +213,7 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
         float *lm = w->lmin + texels * (size_t)f;
         for (size_t i = 0; i < texels; i++) {
             float a = fl.jxx[i], b = fl.jyy[i], c = fl.jxy[i];
-            /* Dupuy 2012 eq. 7: k_i = 1/n + a_i + b_i + a_i b_i - c_i^2 */
-            float k = (float)inv_n + a + b + a * b - c * c;
+            float k = whitecap_dupuy_k(a, b, c, s->patterns);   /* Dupuy 2012 eq. 7 */
             float lmn = whitecap_lambda_min(a, b, c);
             sl[i * 4 + 0] = fl.sx[i];
             sl[i * 4 + 1] = fl.sy[i];
@@ -268,7 +264,7 @@ static float solve_threshold(struct pattern_work *w, int np, size_t count, doubl
         float mid = 0.5f * (lo + hi);
         double keep = 1.0;
         for (int i = 0; i < np; i++)
-            keep *= 1.0 - fraction_from_theta(cdf_sorted(w[i].lmin_sorted, count, mid), alpha);
+            keep *= 1.0 - whitecap_ensemble_fraction(cdf_sorted(w[i].lmin_sorted, count, mid), alpha);
         if (1.0 - keep < target)
             lo = mid;
         else
@@ -279,23 +275,6 @@ static float solve_threshold(struct pattern_work *w, int np, size_t count, doubl
         keep *= 1.0 - cdf_sorted(w[i].lmin_sorted, count, hi);
     *theta_union = 1.0 - keep;
     return hi;
-}
-
-/* Dupuy eq. 6 inverted: epsilon with 1/2 + 1/2 erf((eps - mu) / (sqrt2 sigma)) = theta. */
-static float dupuy_epsilon(double mu, double var, double theta)
-{
-    double sigma = sqrt(var > 0.0 ? var : 0.0);
-    if (sigma == 0.0 || theta <= 0.0)
-        return (float)(mu - 1e3);
-    double lo = -12.0, hi = 12.0;  /* standard-normal quantile by bisection on erfc */
-    for (int it = 0; it < 80; it++) {
-        double mid = 0.5 * (lo + hi);
-        if (0.5 * erfc(-mid / sqrt(2.0)) < theta)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return (float)(mu + sigma * 0.5 * (lo + hi));
 }
 
 int swell_bake(const struct seastate *state, const struct bake_opts *opts,
@@ -333,6 +312,9 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
     /* Whitecaps: Tessendorf 2023 algorithm 1 on the union of patterns, then eq. 7-8 per pattern */
     progress(opts, s.patterns / (s.patterns + 1.0), "whitecaps");
     double dt = s.loop_period_s / F;
+    /* eq. 11's alpha: the per-frame decay our foam loop actually applies (eq. 7 with the
+     * half-life), so the eq. 9 fraction of the baked loop is what eq. 11 predicts; the paper's
+     * fixed SWELL_WHITECAP_ALPHA belongs to its own time step. */
     double alpha = exp(-dt * log(2.0) / s.foam_half_life_s);
     double w_model = whitecap_model_fraction(s.whitecap_model, s.wind_speed_mps);
     double theta_union = 0.0;
@@ -356,7 +338,7 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
         var_h += out->pattern[i].var_h;
     }
     out->whitecap_fraction_measured = (float)(1.0 - keep);
-    out->whitecap_epsilon = dupuy_epsilon(mu, var, theta_union);
+    out->whitecap_epsilon = (float)whitecap_dupuy_epsilon(theta_union, mu, var);
     out->hs_m = (float)(4.0 * sqrt(var_h));
 
     /* Tables: per pattern slope + whitecap (mipmapped), displacement (geometry size) */

@@ -9,19 +9,51 @@
 #include "tables.h"
 
 #define SWELL_WATER_IOR 1.333
+/* sigma (slope standard deviation in the view direction) at the last row of "fresnel_eff";
+ * Bruneton fits eq. 26 for sigma < 0.5 (§5.2, Fig. 7). */
+#define SWELL_FRESNEL_EFF_SIGMA_MAX 0.5
 
-/* Unpolarised Fresnel reflectance for incidence cosine cos_i from air into index n. */
+/* Unpolarised Fresnel reflectance (Hu eq. 2) for incidence cosine cos_i (clamped to [0, 1])
+ * from air into relative index n > 0; 1 at grazing incidence and under total reflection. */
 double fresnel_exact(double cos_i, double n);
 
-/* Effective Fresnel (eq. 24) by numerical integration over the slope distribution of variance
- * sigma2 (isotropic), viewed at cos_v; and the fit of eq. 26. */
+/* Effective Fresnel of an isotropic Gaussian slope distribution of variance sigma2 (per axis)
+ * viewed at cos_v, by numerical integration (Gauss-Legendre, relative error < 1e-6).
+ * The weighting is Bruneton's q_evn (eq. 10): the slope pdf p (eq. 7) times the visible
+ * projected area max(v.f, 0) / f_z, normalised by (1 + Lambda(a_v)) cos(theta_v) (eq. 8-9) so
+ * that it integrates to 1 (eq. 11). v.h = v.f since each facet is a mirror.
+ *   fresnel_effective:         eq. 23 with q_vn H ~ q_evn and the exact F of Hu eq. 2 - equal to
+ *                              fresnel_exact(cos_v) as sigma2 -> 0;
+ *   fresnel_effective_schlick: eq. 24 as printed, R + (1 - R) int q_evn (1 - v.h)^5 with
+ *                              R = fresnel_exact(1, n) - what eq. 26 was fitted to;
+ *   fresnel_effective_fit:     eq. 26, R + (1 - R) (1 - cos_v)^(5 exp(-2.69 sigma)) /
+ *                              (1 + 22.7 sigma^1.5), sigma = sqrt(sigma2).
+ * All for n = SWELL_WATER_IOR; cos_v clamped to [0, 1], sigma2 < 0 treated as 0. */
 double fresnel_effective(double cos_v, double sigma2);
+double fresnel_effective_schlick(double cos_v, double sigma2);
 double fresnel_effective_fit(double cos_v, double sigma2);
 
-/* Fill t (geometry set by the callee: size x size RGBA8, 1 layer, 1 level, scale/bias set):
- * Hu's Fresnel texture; name "fresnel". */
+/* Hu §5.1 Fresnel texture, name "fresnel", size x size RGBA8 (size a power of two in
+ * [2, 1024]), 1 layer, 1 level. Index: the unit view vector V = (vx, vy, vz) towards the eye
+ * in a frame whose z axis is the (unbumped) surface normal, looked up at
+ *     (s, t) = (0.5 + 0.5 vx, 0.5 + 0.5 vy)
+ * so texel (i, j) (row j counted from the first row in memory, GL's t = 0) holds
+ *     vx = (2 i + 1) / size - 1,  vy = (2 j + 1) / size - 1,  vz = sqrt(1 - vx^2 - vy^2);
+ * outside the unit disc (vx, vy) is scaled onto it and vz = 0 (grazing), a continuous
+ * extension for bumped look-ups (Hu: look up (vx - du, vy - dv)) that leave the disc.
+ * RGB = V, scale 2 bias -1 (value = 2 byte/255 - 1); A = fresnel_exact(vz, SWELL_WATER_IOR),
+ * scale 1 bias 0. Sample with LINEAR filtering and CLAMP_TO_EDGE. */
 int fresnel_hu_table(int size, struct swell_table *t, struct swell_err *err);
-/* Effective Fresnel table over (cos_v, sigma): name "fresnel_eff". */
+
+/* Effective Fresnel table, name "fresnel_eff", size x size RGBA8 (size a power of two in
+ * [2, 1024]), 1 layer, 1 level, scale/bias per channel from its min/max (quantize_table).
+ * Texel (i, j) holds cos_v = i / (size - 1) and sigma = SWELL_FRESNEL_EFF_SIGMA_MAX j / (size-1)
+ * (both ends included), so a shader looks up
+ *     s = (0.5 + cos_v (size - 1)) / size,  t = (0.5 + sigma / SIGMA_MAX (size - 1)) / size
+ * with LINEAR filtering and CLAMP_TO_EDGE; sigma is the slope standard deviation in the view
+ * direction (Bruneton eq. 25: sigma^2 = sigma_x^2 cos^2 phi_v + sigma_y^2 sin^2 phi_v).
+ * R = fresnel_effective, G = fresnel_effective_fit (eq. 26), B = fresnel_effective_schlick
+ * (eq. 24), A = 1. */
 int fresnel_eff_table(int size, struct swell_table *t, struct swell_err *err);
 
 #endif
