@@ -103,4 +103,4 @@ test-frame: $(FRAME_BIN) $(if $(wildcard src/swell.c),$(SWELL),)
 clean:
 	rm -rf build
 
--include $(LIB_OBJ:.o=.d) $(UNIT_BIN:=.d) $(FRAME_BIN:=.d)
+-include $(shell find $(BUILD) -name "*.d" 2>/dev/null)

@@ -20,6 +20,7 @@
 #include "fresnel.h"
 #include "ocean.h"
 #include "quantize.h"
+#include "spectrum.h"
 #include "whitecap.h"
 
 #define FRESNEL_SIZE 64
@@ -139,6 +140,7 @@ struct pattern_work {
     float *lmin;                  /* F * N * N */
     float *lmin_sorted;
     double k_mean, k_var;
+    double alpha;                 /* eq. 11's per-frame foam decay for this pattern's dt */
 };
 
 static void pattern_work_free(struct pattern_work *w)
@@ -177,6 +179,21 @@ static int add_table(struct swell_tables *out, const char *name, int kind, int p
     return 0;
 }
 
+/* Hu 2006 §2.1 plays each pattern cyclically; with one period T for all, F frames could only
+ * carry waves slower than (F/2 - 1) 2 pi / T (about 8 m wavelength for F = 16, T = 16 s) and the
+ * small patterns would lose nearly all their waves. So pattern i loops with T_i = T / m_i, the
+ * largest divisor-period whose frames still sample the band's fastest wave; T stays a period of
+ * the whole sea, so frame t and t + T are identical everywhere. */
+static float pattern_period(const struct seastate *s, const struct swell_pattern_info *pi)
+{
+    double w_max = spectrum_omega(pi->k_max, s->depth_m);
+    double w_frames = (s->frames / 2 - 1) * 2.0 * M_PI;   /* = w_max * T_i at the limit */
+    int m = 1;
+    while (m < 4096 && w_max * s->loop_period_s / m > w_frames)
+        m++;
+    return s->loop_period_s / (float)m;
+}
+
 /* Bake one pattern's frames into its float chains. */
 static int bake_pattern_fields(const struct seastate *s, const struct swell_pattern_info *pi,
                                int index, struct pattern_work *w, const struct bake_opts *opts,
@@ -187,7 +204,7 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     size_t chain = quantize_chain_floats(n, n, F, levels);
     struct ocean_desc od = {
         .state = s, .n = n, .size_m = pi->size_m, .k_min = pi->k_min, .k_max = pi->k_max,
-        .frames = F, .period_s = s->loop_period_s, .lambda = pi->lambda,
+        .frames = F, .period_s = pi->period_s, .lambda = pi->lambda,
         /* per-pattern seeds: distinct, deterministic (golden-ratio stride) */
         .seed = s->seed + 0x9e3779b9u * (uint32_t)(index + 1),
     };
@@ -252,7 +269,7 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
 
 /* Shared lambda_T so that the union of the patterns' whitecaps equals the model (see top). */
 static float solve_threshold(struct pattern_work *w, int np, size_t count, double target,
-                             double alpha, double *theta_union)
+                             double *theta_union)
 {
     float lo = w[0].lmin_sorted[0], hi = w[0].lmin_sorted[count - 1];
     for (int i = 1; i < np; i++) {
@@ -264,7 +281,7 @@ static float solve_threshold(struct pattern_work *w, int np, size_t count, doubl
         float mid = 0.5f * (lo + hi);
         double keep = 1.0;
         for (int i = 0; i < np; i++)
-            keep *= 1.0 - whitecap_ensemble_fraction(cdf_sorted(w[i].lmin_sorted, count, mid), alpha);
+            keep *= 1.0 - whitecap_ensemble_fraction(cdf_sorted(w[i].lmin_sorted, count, mid), w[i].alpha);
         if (1.0 - keep < target)
             lo = mid;
         else
@@ -275,6 +292,30 @@ static float solve_threshold(struct pattern_work *w, int np, size_t count, doubl
         keep *= 1.0 - cdf_sorted(w[i].lmin_sorted, count, hi);
     *theta_union = 1.0 - keep;
     return hi;
+}
+
+#define THRESHOLD_ITERATIONS 16
+
+/* Foam loops (eq. 7-8) of every pattern at threshold lt; *keep = prod (1 - W_i), W_i by eq. 9.
+ * With store set, the opacities go into the whitecap chains. */
+static int foam_union(const struct seastate *s, const struct swell_tables *out,
+                      struct pattern_work *w, float lt, float *tmp, int store, double *keep,
+                      struct swell_err *err)
+{
+    size_t texels = (size_t)s->size_fs * (size_t)s->size_fs, count = texels * (size_t)s->frames;
+    *keep = 1.0;
+    for (int i = 0; i < s->patterns; i++) {
+        float dt = out->pattern[i].period_s / s->frames;
+        int r = whitecap_foam_loop(w[i].lmin, s->frames, texels, lt, dt, s->foam_half_life_s,
+                                   tmp, err);
+        if (r)
+            return r;
+        if (store)
+            for (size_t j = 0; j < count; j++)
+                w[i].white[j * 4 + 2] = tmp[j];
+        *keep *= 1.0 - whitecap_measured_fraction(tmp, count);
+    }
+    return 0;
 }
 
 int swell_bake(const struct seastate *state, const struct bake_opts *opts,
@@ -306,33 +347,53 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
     int n = s.size_fs, F = s.frames, levels = ilog2(n) + 1;
     size_t texels = (size_t)n * (size_t)n, count = texels * (size_t)F;
     for (int i = 0; i < s.patterns; i++)
+        out->pattern[i].period_s = pattern_period(&s, &out->pattern[i]);
+    for (int i = 0; i < s.patterns; i++)
         if ((r = bake_pattern_fields(&s, &out->pattern[i], i, &work[i], opts, out, err)))
             goto fail;
 
     /* Whitecaps: Tessendorf 2023 algorithm 1 on the union of patterns, then eq. 7-8 per pattern */
     progress(opts, s.patterns / (s.patterns + 1.0), "whitecaps");
-    double dt = s.loop_period_s / F;
-    /* eq. 11's alpha: the per-frame decay our foam loop actually applies (eq. 7 with the
-     * half-life), so the eq. 9 fraction of the baked loop is what eq. 11 predicts; the paper's
-     * fixed SWELL_WHITECAP_ALPHA belongs to its own time step. */
-    double alpha = exp(-dt * log(2.0) / s.foam_half_life_s);
+    /* eq. 11's alpha: the per-frame decay each pattern's foam loop actually applies (eq. 7
+     * with the half-life over that pattern's frame spacing), so the eq. 9 fraction of the baked
+     * loop is what eq. 11 predicts; the paper's fixed SWELL_WHITECAP_ALPHA belongs to its own
+     * time step. */
+    for (int i = 0; i < s.patterns; i++)
+        work[i].alpha = exp(-(out->pattern[i].period_s / F) * log(2.0) / s.foam_half_life_s);
     double w_model = whitecap_model_fraction(s.whitecap_model, s.wind_speed_mps);
     double theta_union = 0.0;
     out->whitecap_fraction_model = (float)w_model;
-    out->lambda_t = solve_threshold(work, s.patterns, count, w_model, alpha, &theta_union);
+    float lt = solve_threshold(work, s.patterns, count, w_model, &theta_union);
+    out->lambda_t_algorithm1 = lt;
     tmp = malloc(count * sizeof(float));
     if (!tmp) {
         r = swell_fail(err, SWELL_E_NOMEM, "cannot allocate the foam buffer (%zu floats)", count);
         goto fail;
     }
-    double keep = 1.0, mu = 0.0, var = 0.0, var_h = 0.0;
-    for (int i = 0; i < s.patterns; i++) {
-        if ((r = whitecap_foam_loop(work[i].lmin, F, texels, out->lambda_t, (float)dt,
-                                    s.foam_half_life_s, tmp, err)))
+    /* Algorithm 1 (eq. 11-13) assumes breaking uncorrelated from frame to frame; in a loop the
+     * same crests break every period, so the eq. 9 fraction of the baked loop falls short of
+     * the model. Refine lambda_T by bisection on the measured union fraction of the loop,
+     * starting from algorithm 1's value (monotone: a higher threshold only adds foam). */
+    float lo = work[0].lmin_sorted[0], hi = work[0].lmin_sorted[count - 1];
+    for (int i = 1; i < s.patterns; i++) {
+        lo = fminf(lo, work[i].lmin_sorted[0]);
+        hi = fmaxf(hi, work[i].lmin_sorted[count - 1]);
+    }
+    double keep = 1.0;
+    for (int it = 0; it < THRESHOLD_ITERATIONS + 1; it++) {
+        if ((r = foam_union(&s, out, work, lt, tmp, it == THRESHOLD_ITERATIONS, &keep, err)))
             goto fail;
-        for (size_t j = 0; j < count; j++)
-            work[i].white[j * 4 + 2] = tmp[j];
-        keep *= 1.0 - whitecap_measured_fraction(tmp, count);   /* eq. 9 per pattern */
+        if (it == THRESHOLD_ITERATIONS)
+            break;
+        if (1.0 - keep < w_model)
+            lo = lt;
+        else
+            hi = lt;
+        lt = 0.5f * (lo + hi);
+    }
+    out->lambda_t = lt;
+    double mu = 0.0, var = 0.0, var_h = 0.0;
+    for (int i = 0; i < s.patterns; i++) {
         mu += work[i].k_mean;
         var += work[i].k_var;
         var_h += out->pattern[i].var_h;

@@ -26,7 +26,18 @@ struct gpu_caps {
     int texture_lod;            /* EXT_shader_texture_lod or GLES3 textureGrad/Lod */
     int glsl300;                /* may compile #version 300 es */
     int max_texture_size;
+    int context_major;          /* GL_VERSION major of the context (not the tier) */
+    int fragment_highp;         /* highp float in fragment shaders (never on GLES2_MIN) */
+    int glsl100_derivatives;    /* #version 100 shaders may enable GL_OES_standard_derivatives */
+    int glsl100_texture_lod;    /* #version 100 shaders may enable GL_EXT_shader_texture_lod */
     char vendor[64], renderer[128], version[128];
+};
+
+/* One accounted GL object: the size charged when it was created, released on delete. */
+struct gpu_alloc {
+    GLenum kind;                /* GL_TEXTURE, or GL_ARRAY_BUFFER for any buffer (names are per kind) */
+    GLuint name;
+    uint64_t bytes;
 };
 
 struct gpu {
@@ -34,6 +45,8 @@ struct gpu {
     uint64_t budget_bytes;      /* refuse allocations past this; 0 = no limit */
     uint64_t bytes;             /* accounted now */
     uint64_t peak_bytes;
+    struct gpu_alloc *allocs;   /* owned; live objects made by gpu_texture/buffer_create */
+    int alloc_count, alloc_cap;
 };
 
 const char *gpu_tier_name(int tier);       /* "gles2-min" */
@@ -41,6 +54,10 @@ int gpu_tier_from_name(const char *name);  /* TIER_* or -1 */
 
 /* Probe the current context; forced_tier -1 = best available. Fails if forced > available. */
 int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell_err *err);
+
+/* Free the accounting record (not GL objects: their owners delete them first). Accepts a zeroed
+ * or half-initialised struct; safe to call twice. */
+void gpu_shutdown(struct gpu *g);
 
 /* Accounting: check first (before allocating), then record; release on delete. */
 int  gpu_account(struct gpu *g, uint64_t bytes, const char *what, struct swell_err *err);

@@ -40,16 +40,25 @@ struct ocean_stats {
     double mss_x, mss_y;/* slope variance in the fields */
     double mss_fast_x, mss_fast_y; /* in-band slope variance dropped as too fast for F frames */
     int components;     /* nonzero spectral components kept */
+    /* What the spectrum expects of the kept components, sum of Psi dk^2 (resp. kx^2, ky^2
+     * times it) over them; var_h, mss_x, mss_y above are this realization's values. */
+    double var_h_expected, mss_x_expected, mss_y_expected;
 };
 
 struct ocean;
 
 int  ocean_create(const struct ocean_desc *desc, struct ocean **out, struct swell_err *err);
-/* Evaluate frame f (0 <= f < F, time t = f T / F); fields stay valid until the next call. */
+/* Evaluate frame f (time t = f T / F; any integer, taken mod F, so frame F is frame 0); fields
+ * stay valid until the next call. */
 int  ocean_eval(struct ocean *o, int frame, struct ocean_fields *out, struct swell_err *err);
 /* Evaluate at any time t (s) - frame f is t = f T / F; t and t + T give identical fields. */
 int  ocean_eval_time(struct ocean *o, double t_s, struct ocean_fields *out, struct swell_err *err);
 void ocean_get_stats(const struct ocean *o, struct ocean_stats *out);
+/* The height spectrum h~(k, t) of frame f that the fields are synthesised from, N*N complex
+ * values interleaved (re, im) in FFTW order (index iy * N + ix, wavevector
+ * (ix', iy') 2 pi / L with ix' = ix for ix < N/2, else ix - N); zero where not kept.
+ * h(x) = sum_k h~(k) e^{+i k.x}, unnormalised. For tests and inspection. */
+int  ocean_height_spectrum(struct ocean *o, int frame, float *coef, struct swell_err *err);
 void ocean_destroy(struct ocean *o);
 
 /* Choose n pattern sizes and bands for a sea state and grid size N (Dupuy §2): sizes

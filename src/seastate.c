@@ -19,7 +19,9 @@ void seastate_resolve(struct seastate *s)
     if (s->fetch_km == 0.0f) s->fetch_km = 100.0f;
     /* depth_m: 0 is itself the default (deep water) */
     if (s->spectrum == SPECTRUM_DEFAULT) s->spectrum = SPECTRUM_JONSWAP;
-    if (s->spread == 0.0f) s->spread = 10.0f;
+    /* s = 2 gives mss_x / mss_y = 1.4, Cox & Munk's up/cross-wind ratio: the slope statistics
+     * drive the BRDF and whitecaps (a frequency-dependent s would suit long waves better) */
+    if (s->spread == 0.0f) s->spread = 2.0f;
     if (s->seed == 0) s->seed = 1;
     if (s->patterns == 0) s->patterns = 4;
     if (s->loop_period_s == 0.0f) s->loop_period_s = 16.0f;

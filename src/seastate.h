@@ -34,7 +34,7 @@ struct seastate {
                                default 0 = deep water. range 0 or [1, 10000] */
     int   spectrum;         /* enum spectrum_kind. default JONSWAP */
     float spread;           /* directional spreading exponent s of cos^(2s)((theta-theta_w)/2).
-                               default 10. range [1, 100] */
+                               default 2 (Cox-Munk slope ratio). range [1, 100] */
     uint32_t seed;          /* random seed for the Gaussian amplitudes. default 0 means 1 */
     int   patterns;         /* n wave patterns (Dupuy 2012 §2). default 4. range [1, 4] */
     float loop_period_s;    /* T: every pattern repeats exactly after T seconds (Hu 2006 §2.1).

@@ -23,4 +23,17 @@ double spectrum_psi(const struct seastate *s, double kx, double ky);
 /* Capillary cut-off wavenumber for the slope statistics, rad/m. */
 double spectrum_k_cutoff(const struct seastate *s);
 
+/* Inverse dispersion: the k > 0 with spectrum_omega(k, depth) = omega, rad/m (0 for omega <= 0). */
+double spectrum_k_of_omega(double omega, double depth_m);
+/* Wavenumber of the spectral peak, rad/m: spectrum_k_of_omega(spectrum_peak_omega(s)). */
+double spectrum_peak_k(const struct seastate *s);
+/* Cox & Munk 1954 clean-surface total mean-square slope, 0.003 + 5.12e-3 U (U in m/s). */
+double spectrum_mss_cox_munk(double wind_speed_mps);
+
+/* Moments of Psi over the annulus k0 <= |k| < k1 (rad/m), by quadrature: var = integral Psi,
+ * mss_x = integral kx^2 Psi, mss_y = integral ky^2 Psi (world x east, y north; Bruneton 2010
+ * eq. 4 for a continuous spectrum). Any output pointer may be NULL. */
+void spectrum_band_moments(const struct seastate *s, double k0, double k1, double *var,
+                           double *mss_x, double *mss_y);
+
 #endif

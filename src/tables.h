@@ -58,6 +58,9 @@ struct swell_pattern_info {
     float size_m;           /* L_i: patch side, m */
     float k_min, k_max;     /* wavenumber band this pattern samples, rad/m (Dupuy §2: no band twice) */
     float lambda;           /* choppiness lambda_i (Dupuy eq. 1) */
+    float period_s;         /* T_i = T / m_i (m_i a whole number): this pattern's loop period,
+                               short enough that F frames sample its fastest wave (Hu §2.1);
+                               every pattern still repeats after the set's loop period T */
     float var_h;            /* height variance kept in the tables, m^2 */
     float mss_x, mss_y;     /* slope variance kept in the tables (resolved by the tables) */
 };
@@ -72,7 +75,9 @@ struct swell_tables {
                                frames or beyond the last band): the BRDF's part (Bruneton eq. 4) */
     float mss_unresolved_y;
     float hs_m;             /* significant wave height 4 sqrt(var_h total), m */
-    float lambda_t;         /* whitecap threshold on lambda_min (Tessendorf 2023 alg. 1) */
+    float lambda_t;         /* whitecap threshold on lambda_min: algorithm 1 (Tessendorf 2023),
+                               refined so the looping foam's eq. 9 fraction meets the model */
+    float lambda_t_algorithm1; /* algorithm 1's threshold before that refinement */
     float whitecap_fraction_model;     /* W from the wind-speed model */
     float whitecap_fraction_measured;  /* Tessendorf 2023 eq. 9 on the baked realization */
     float whitecap_epsilon; /* Dupuy 2012 eq. 3 threshold on the Jacobian j, chosen so that the

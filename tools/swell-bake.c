@@ -42,7 +42,7 @@ static void usage(FILE *f)
 "  --fetch KM        fetch, km (jonswap, tma)                          [100]  0.1..10000\n"
 "  --depth M         water depth, m; 0 = deep water                    [0]    0 or 1..10000\n"
 "  --spectrum NAME   pm | jonswap | tma                                [jonswap]\n"
-"  --spread S        directional spreading exponent of cos^2s           [10]   1..100\n"
+"  --spread S        directional spreading exponent of cos^2s           [2]    1..100\n"
 "  --seed N          random seed                                       [1]\n"
 "  --choppiness L    choppy-wave lambda (Dupuy 2012 eq. 1)              [1]    0..2\n"
 "  --whitecap-model NAME  mom80 (3.84e-6 U^3.41) | wu88 (2.0e-6 U^3.75) [mom80]\n"
@@ -226,7 +226,7 @@ static int write_report(const char *path, const struct swell_tables *t, double s
     if (len >= cap)
         r = swell_fail(err, SWELL_E_ARG, "report larger than %zu bytes", cap);
     else
-        r = fsutil_write_atomic(path, buf, len, err);
+        r = fs_write_atomic(path, buf, len, err);
     free(buf);
     return r;
 }
@@ -253,6 +253,17 @@ static void print_summary(const struct swell_tables *t, const char *dir, double 
     printf("  wrote %d tables to %s in %.2f s\n", t->count, dir, seconds);
 }
 
+static void inspect_row(void *user, const struct tables_verify_entry *e)
+{
+    int *bad = user;
+    if (e->status)
+        (*bad)++;
+    printf("  %-18s %-9s %-6s %4dx%-4d layers %-3d levels %-2d %9llu B  %s%s%s\n", e->file,
+           e->listed ? table_kind_name(e->kind) : "?", e->listed ? table_format_name(e->format) : "?",
+           e->width, e->height, e->layers, e->levels, (unsigned long long)e->bytes,
+           e->status ? "BAD: " : "ok", e->status ? e->msg : "", e->listed ? "" : " (not in manifest)");
+}
+
 static int cmd_inspect(int argc, char **argv)
 {
     if (argc != 3 || argv[2][0] == '-') {
@@ -260,11 +271,36 @@ static int cmd_inspect(int argc, char **argv)
         return 2;
     }
     struct swell_err err = { 0 };
-    int r = tables_inspect_dir(argv[2], stdout, &err);
+    struct tables_manifest *m = calloc(1, sizeof *m);
+    if (!m) {
+        fprintf(stderr, "swell-bake: out of memory\n");
+        return 1;
+    }
+    int bad = 0;
+    printf("%s:\n", argv[2]);
+    int r = tables_verify_dir(argv[2], inspect_row, &bad, m, &err);
+    if (!r || bad) {
+        const struct swell_tables *t = &m->set;
+        uint64_t tb = 0;
+        for (int i = 0; i < t->count; i++)
+            tb += m->entry[i].file_bytes;
+        uint64_t res = bake_resident_bytes(t->patterns, t->state.size_fs);
+        printf("  sea state: %s, U10 %.1f m/s towards %.0f deg, fetch %.0f km, depth %s, seed %u\n",
+               spectrum_name(t->state.spectrum), t->state.wind_speed_mps, t->state.wind_dir_deg,
+               t->state.fetch_km, t->state.depth_m > 0 ? "finite" : "deep", t->state.seed);
+        printf("  %d patterns, %d frames over %.1f s; Hs %.2f m; whitecaps %.5f (model %.5f)\n",
+               t->patterns, t->frames, t->loop_period_s, t->hs_m, t->whitecap_fraction_measured,
+               t->whitecap_fraction_model);
+        printf("  GPU bytes %llu (table files %llu + resident %llu), budget %llu\n",
+               (unsigned long long)(tb + res), (unsigned long long)tb, (unsigned long long)res,
+               (unsigned long long)t->state.budget_bytes);
+    }
+    free(m);
     if (r) {
         fprintf(stderr, "swell-bake: inspect %s: %s\n", argv[2], err.msg);
         return 1;
     }
+    printf("  all tables sound\n");
     return 0;
 }
 

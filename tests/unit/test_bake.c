@@ -143,27 +143,37 @@ static void test_pattern_union_holds_up(void **state)
             memcpy(copy[i][c], src, sizeof(float) * n * n);
         }
     }
-    /* common grid at the finest pattern's texel spacing */
-    int g = 384;
-    double dx = t.pattern[np - 1].size_m / n;
-    size_t cnt = (size_t)g * g;
+    /* common sample points: random positions over the largest pattern's period, where every
+     * pattern is sampled (bilinearly, each wrapped with its own period) */
+    size_t cnt = 150000;
     float *full = malloc(cnt * sizeof(float));
     unsigned char *uni = malloc(cnt);
-    for (int y = 0; y < g; y++)
-        for (int x = 0; x < g; x++) {
-            float a = 0, b = 0, c = 0;
-            int any = 0;
-            for (int i = 0; i < np; i++) {
-                float L = t.pattern[i].size_m;
-                float ai = sample(copy[i][0], n, L, x * dx, y * dx);
-                float bi = sample(copy[i][1], n, L, x * dx, y * dx);
-                float ci = sample(copy[i][2], n, L, x * dx, y * dx);
-                a += ai; b += bi; c += ci;
-                any |= whitecap_lambda_min(ai, bi, ci) < t.lambda_t;
-            }
-            full[(size_t)y * g + x] = whitecap_lambda_min(a, b, c);
-            uni[(size_t)y * g + x] = (unsigned char)any;
+    size_t per[SWELL_MAX_PATTERNS] = { 0 };
+    uint64_t rng = 12345;
+    for (size_t p = 0; p < cnt; p++) {
+        double pos[2];
+        for (int c = 0; c < 2; c++) {
+            rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+            pos[c] = (double)(rng >> 11) / 9007199254740992.0 * t.pattern[0].size_m;
         }
+        float a = 0, b = 0, c = 0;
+        int any = 0;
+        for (int i = 0; i < np; i++) {
+            float L = t.pattern[i].size_m;
+            float ai = sample(copy[i][0], n, L, pos[0], pos[1]);
+            float bi = sample(copy[i][1], n, L, pos[0], pos[1]);
+            float ci = sample(copy[i][2], n, L, pos[0], pos[1]);
+            a += ai; b += bi; c += ci;
+            int brk = whitecap_lambda_min(ai, bi, ci) < t.lambda_t;
+            per[i] += (size_t)brk;
+            any |= brk;
+        }
+        full[p] = whitecap_lambda_min(a, b, c);
+        uni[p] = (unsigned char)any;
+    }
+    for (int i = 0; i < np; i++)
+        print_message("pattern %d (L %.1f m) breaks at %.4f of the points\n", i,
+                      t.pattern[i].size_m, (double)per[i] / cnt);
     size_t n_uni = 0;
     for (size_t i = 0; i < cnt; i++)
         n_uni += uni[i];

@@ -1,0 +1,442 @@
+/* swell - render the ocean: fullscreen on a KMS display, or offscreen (EGL surfaceless) to PNG.
+ *
+ * main is a straight line: options -> tables (load, or bake in memory) -> platform -> gpu ->
+ * renderer -> frame loop -> PNG output or present -> teardown in reverse. Library code returns
+ * errors; only this file prints and exits (0 ok, 1 runtime failure, 2 usage error).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bake.h"
+#include "camera.h"
+#include "gpu.h"
+#include "image.h"
+#include "parse.h"
+#include "platform.h"
+#include "preset.h"
+#include "renderer.h"
+#include "tables_io.h"
+
+#define SWELL_VERSION "0.1.0"
+#define DEFAULT_FPS 30.0
+#define MAX_PATH_LEN 4096
+
+struct options {
+    struct platform_desc platform;
+    int frames;                 /* -1 = by platform: 1 offscreen, unlimited on KMS */
+    double fps;                 /* animation time step 1/fps; 0 = default (wall clock on KMS) */
+    double time0_s;
+    double duration_s;          /* 0 = none */
+    const char *out;            /* PNG path or printf pattern with one %d */
+    const char *tables_dir;
+    int baking;                 /* a --preset or --wind was given */
+    struct seastate state;
+    uint64_t budget;            /* 0 = the tables' own */
+    float sun_elev_deg, sun_azim_deg;
+    int camera_given, path;
+    struct camera camera;
+    int quality, geometry, tier;
+    int verbose;
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+"usage: swell [options]       render the ocean (KMS display, or PNG frames offscreen)\n"
+"\n"
+"Output:\n"
+"  --platform P      surfaceless | kms | auto (KMS when a display is connected)      [auto]\n"
+"  --size WxH        offscreen frame size, pixels                               [1280x720]\n"
+"  --frames N        frames to render; 0 = until quit or --duration\n"
+"                                            [1 offscreen, 0 on KMS, or duration x fps]\n"
+"  --fps F           animation step 1/F s per frame, frames/s            [30; KMS: clock]\n"
+"  --time S          animation time of the first frame, s                            [0]\n"
+"  --duration S      stop after S s of animation time                             [none]\n"
+"  --out FILE.png    write frames as PNG; a sequence needs a pattern such as\n"
+"                    out/frame%%04d.png (one %%d conversion)                        [none]\n"
+"Sea (tables):\n"
+"  --tables DIR      load baked tables from DIR (see swell-bake)\n"
+"  --preset NAME     bake in memory from tables/NAME.preset (or a .preset path); repeats\n"
+"  --wind U          bake in memory with wind speed U10, m/s (0.5..40)               [10]\n"
+"  --budget B        GPU memory budget: tiny (4 MiB), default (16 MiB) or bytes (8M)\n"
+"                                                                [the tables' budget]\n"
+"                    (without --tables/--preset/--wind the default sea state is baked)\n"
+"View:\n"
+"  --sun ELEV,AZIM   sun elevation above the horizon (0..90] and azimuth CCW from east,\n"
+"                    degrees                                                      [30,0]\n"
+"  --camera X,Y,Z    camera position, m (x east, y north, z altitude 0.1..50000)  [0,0,10]\n"
+"  --heading DEG     view direction CCW from east, degrees (-360..360)               [0]\n"
+"  --pitch DEG       view pitch, degrees, negative looks down (-89..89)            [-10]\n"
+"  --path P          scripted camera: surface | 1km | 10km (overrides --camera)     [none]\n"
+"Rendering:\n"
+"  --quality Q       low | high                                                   [high]\n"
+"  --geometry G      grid (projected grid) | patches (near/far patches)           [grid]\n"
+"  --tier T          force a lower device tier: gles2-min | gles2-ext | gles3      [best]\n"
+"KMS:\n"
+"  --device PATH     DRM device such as /dev/dri/card0       [first with a display]\n"
+"  --connector NAME  connector such as HDMI-A-1 or Virtual-1    [first connected]\n"
+"  --mode WxH[@HZ]   display mode, exact else nearest                   [preferred]\n"
+"  --kms-api A       atomic | legacy | auto (atomic when available)            [auto]\n"
+"Other:\n"
+"  --verbose         print the chosen device, mode, EGL config and per-frame stats\n"
+"  --help            this text\n"
+"  --version         print the version\n"
+"\n"
+"Exit status: 0 success, 1 runtime failure, 2 usage error.\n");
+}
+
+static int opt_value(int argc, char **argv, int *i, const char **v)
+{
+    if (*i + 1 >= argc) {
+        fprintf(stderr, "swell: %s needs a value (see --help)\n", argv[*i]);
+        return 2;
+    }
+    *v = argv[++*i];
+    return 0;
+}
+
+/* The --out text: plain, or exactly one %d conversion with optional 0 flag and width; "%%" is a
+ * literal percent. Anything else could read arguments that are not there. Returns the number of
+ * conversions, or -1 if the pattern is not allowed. */
+static int out_conversions(const char *s)
+{
+    int n = 0;
+    for (const char *p = s; *p; p++) {
+        if (*p != '%')
+            continue;
+        p++;
+        if (*p == '%')
+            continue;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (*p != 'd')
+            return -1;
+        n++;
+    }
+    return n > 1 ? -1 : n;
+}
+
+static int parse_mode(const char *opt, const char *v, struct platform_desc *d,
+                      struct swell_err *err)
+{
+    char buf[64];
+    if (strlen(v) >= sizeof buf)
+        return swell_fail(err, SWELL_E_ARG, "%s: '%s' is not WxH[@HZ] (e.g. 1920x1080@60)",
+                          opt, v);
+    strcpy(buf, v);
+    char *at = strchr(buf, '@');
+    if (at) {
+        *at = '\0';
+        if (parse_int(opt, at + 1, 1, 1000, &d->mode_hz, err))
+            return swell_fail(err, SWELL_E_ARG, "%s: '%s' is not WxH[@HZ] with HZ 1 to 1000 "
+                              "(e.g. 1920x1080@60)", opt, v);
+    }
+    return parse_wxh(opt, buf, 16, 16384, &d->mode_w, &d->mode_h, err);
+}
+
+static int is_value_option(const char *a)
+{
+    static const char *const names[] = {
+        "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
+        "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
+        "--quality", "--geometry", "--tier", "--device", "--connector", "--mode", "--kms-api",
+    };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (!strcmp(a, names[i]))
+            return 1;
+    return 0;
+}
+
+static int parse_args(int argc, char **argv, struct options *o)
+{
+    struct swell_err err = { 0 };
+    int r = 0;
+    for (int i = 1; i < argc && !r; i++) {
+        const char *a = argv[i], *v = NULL;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            exit(0);
+        }
+        if (!strcmp(a, "--version")) {
+            printf("swell " SWELL_VERSION "\n");
+            exit(0);
+        }
+        if (!strcmp(a, "--verbose")) {
+            o->verbose = o->platform.verbose = 1;
+            continue;
+        }
+        if (strncmp(a, "--", 2) != 0) {
+            fprintf(stderr, "swell: unexpected argument '%s' (see --help)\n", a);
+            return 2;
+        }
+        if (!is_value_option(a)) {
+            fprintf(stderr, "swell: unknown option '%s' (see --help)\n", a);
+            return 2;
+        }
+        if (opt_value(argc, argv, &i, &v))
+            return 2;
+        if (!strcmp(a, "--platform")) {
+            if (!strcmp(v, "auto")) o->platform.kind = PLATFORM_AUTO;
+            else if (!strcmp(v, "surfaceless")) o->platform.kind = PLATFORM_SURFACELESS;
+            else if (!strcmp(v, "kms")) o->platform.kind = PLATFORM_KMS;
+            else r = swell_fail(&err, SWELL_E_ARG, "--platform: '%s' is not surfaceless, kms or auto", v);
+        } else if (!strcmp(a, "--size")) {
+            r = parse_wxh(a, v, 16, 16384, &o->platform.width, &o->platform.height, &err);
+        } else if (!strcmp(a, "--frames")) {
+            r = parse_int(a, v, 0, 100000000L, &o->frames, &err);
+        } else if (!strcmp(a, "--fps")) {
+            r = parse_double(a, v, 0.1, 1000, "frames/s", &o->fps, &err);
+        } else if (!strcmp(a, "--time")) {
+            r = parse_double(a, v, -1e7, 1e7, "s", &o->time0_s, &err);
+        } else if (!strcmp(a, "--duration")) {
+            r = parse_double(a, v, 0.001, 1e7, "s", &o->duration_s, &err);
+        } else if (!strcmp(a, "--out")) {
+            o->out = v;
+            if (!v[0] || out_conversions(v) < 0)
+                r = swell_fail(&err, SWELL_E_ARG, "--out: '%s' is not a file name or a pattern "
+                               "with one %%d conversion (e.g. out/frame%%04d.png)", v);
+        } else if (!strcmp(a, "--tables")) {
+            o->tables_dir = v;
+        } else if (!strcmp(a, "--preset")) {
+            o->baking = 1;
+            r = preset_load(v, &o->state, &err);
+        } else if (!strcmp(a, "--wind")) {
+            o->baking = 1;
+            r = parse_float(a, v, 0.5, 40, "m/s", &o->state.wind_speed_mps, &err);
+        } else if (!strcmp(a, "--budget")) {
+            r = parse_budget(a, v, &o->budget, &err);
+        } else if (!strcmp(a, "--sun")) {
+            double s[2];
+            r = parse_doubles(a, v, 2, -360, 360, s, &err);
+            if (!r && (s[0] <= 0 || s[0] > 90))
+                r = swell_fail(&err, SWELL_E_ARG, "--sun: elevation %g in '%s' is out of range "
+                               "(degrees, above 0 up to 90)", s[0], v);
+            o->sun_elev_deg = (float)s[0];
+            o->sun_azim_deg = (float)s[1];
+        } else if (!strcmp(a, "--camera")) {
+            r = parse_doubles(a, v, 3, -1e7, 1e7, o->camera.pos, &err);
+            if (!r && (o->camera.pos[2] < 0.1 || o->camera.pos[2] > 50000))
+                r = swell_fail(&err, SWELL_E_ARG, "--camera: altitude %g m in '%s' is out of "
+                               "range (0.1 to 50000 m)", o->camera.pos[2], v);
+            o->camera_given = 1;
+        } else if (!strcmp(a, "--heading")) {
+            r = parse_float(a, v, -360, 360, "deg", &o->camera.heading_deg, &err);
+        } else if (!strcmp(a, "--pitch")) {
+            r = parse_float(a, v, -89, 89, "deg", &o->camera.pitch_deg, &err);
+        } else if (!strcmp(a, "--path")) {
+            o->path = camera_path_from_name(v);
+            if (o->path <= CAMERA_PATH_NONE)
+                r = swell_fail(&err, SWELL_E_ARG, "--path: '%s' is not surface, 1km or 10km", v);
+        } else if (!strcmp(a, "--quality")) {
+            o->quality = render_quality_from_name(v);
+            if (o->quality < 0)
+                r = swell_fail(&err, SWELL_E_ARG, "--quality: '%s' is not low or high", v);
+        } else if (!strcmp(a, "--geometry")) {
+            o->geometry = geometry_kind_from_name(v);
+            if (o->geometry < 0)
+                r = swell_fail(&err, SWELL_E_ARG, "--geometry: '%s' is not grid or patches", v);
+        } else if (!strcmp(a, "--tier")) {
+            o->tier = gpu_tier_from_name(v);
+            if (o->tier < 0)
+                r = swell_fail(&err, SWELL_E_ARG, "--tier: '%s' is not gles2-min, gles2-ext or "
+                               "gles3", v);
+        } else if (!strcmp(a, "--device")) {
+            o->platform.device = v;
+        } else if (!strcmp(a, "--connector")) {
+            o->platform.connector = v;
+        } else if (!strcmp(a, "--mode")) {
+            r = parse_mode(a, v, &o->platform, &err);
+        } else if (!strcmp(a, "--kms-api")) {
+            if (!strcmp(v, "auto")) o->platform.kms_api = KMS_API_AUTO;
+            else if (!strcmp(v, "atomic")) o->platform.kms_api = KMS_API_ATOMIC;
+            else if (!strcmp(v, "legacy")) o->platform.kms_api = KMS_API_LEGACY;
+            else r = swell_fail(&err, SWELL_E_ARG, "--kms-api: '%s' is not atomic, legacy or auto", v);
+        } else {
+            fprintf(stderr, "swell: unknown option '%s' (see --help)\n", a);
+            return 2;
+        }
+    }
+    if (r) {
+        fprintf(stderr, "swell: %s\n", err.msg);
+        return 2;
+    }
+    if (o->tables_dir && o->baking) {
+        fprintf(stderr, "swell: --tables loads baked tables; --preset/--wind bake new ones: "
+                "give one or the other\n");
+        return 2;
+    }
+    if (o->out && o->frames != 1 && out_conversions(o->out) == 0 &&
+        (o->frames > 1 || o->duration_s > 0)) {
+        fprintf(stderr, "swell: --out: '%s' has no %%d pattern but more than one frame is "
+                "rendered (e.g. out/frame%%04d.png)\n", o->out);
+        return 2;
+    }
+    return 0;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int load_tables(struct options *o, struct swell_tables *t, struct swell_err *err)
+{
+    if (o->tables_dir) {
+        int rc = tables_load_dir(o->tables_dir, t, err);
+        if (rc)
+            return swell_err_context(err, "loading --tables %s", o->tables_dir);
+        return SWELL_OK;
+    }
+    if (o->budget)
+        o->state.budget_bytes = o->budget;
+    int rc = swell_bake(&o->state, NULL, t, err);
+    if (rc)
+        return swell_err_context(err, "baking the sea state in memory");
+    return SWELL_OK;
+}
+
+/* Frame loop: everything it needs exists already; it allocates nothing but the PNG path. */
+static int run_frames(const struct options *o, struct platform_handle *ph, struct renderer *r,
+                      int is_kms, struct swell_err *err)
+{
+    int w = 0, h = 0;
+    ph->be->size(ph->p, &w, &h);
+    int frames = o->frames;
+    if (frames < 0) {
+        double fps = o->fps > 0 ? o->fps : DEFAULT_FPS;
+        frames = o->duration_s > 0 ? (int)ceil(o->duration_s * fps) : (is_kms ? 0 : 1);
+    }
+    if (frames == 0 && !is_kms && o->duration_s <= 0)
+        return swell_fail(err, SWELL_E_ARG, "--frames 0 renders until quit, which never comes "
+                          "offscreen; give --frames N or --duration S");
+    if (o->out && out_conversions(o->out) == 0 && frames != 1)
+        return swell_fail(err, SWELL_E_ARG, "--out: '%s' has no %%d pattern but %s frames are "
+                          "rendered (e.g. out/frame%%04d.png)", o->out,
+                          frames ? "several" : "unlimited");
+    uint8_t *rgba = NULL;
+    if (o->out) {
+        rgba = malloc((size_t)w * (size_t)h * 4);
+        if (!rgba)
+            return swell_fail(err, SWELL_E_NOMEM, "no memory for a %dx%d read-back", w, h);
+    }
+    /* On KMS without --fps the animation follows the clock; otherwise it steps exactly. */
+    int wall_clock = is_kms && o->fps <= 0;
+    double step = 1.0 / (o->fps > 0 ? o->fps : DEFAULT_FPS);
+    double start = now_s();
+    int rc = SWELL_OK;
+    for (int i = 0; frames == 0 || i < frames; i++) {
+        double t = wall_clock ? o->time0_s + (now_s() - start) : o->time0_s + i * step;
+        if (o->duration_s > 0 && t - o->time0_s >= o->duration_s)
+            break;
+        if (ph->be->should_quit(ph->p))
+            break;
+        struct camera cam = o->camera;
+        if (o->path > CAMERA_PATH_NONE)
+            camera_path_at(o->path, t, &cam);
+        rc = ph->be->begin_frame(ph->p, err);
+        if (!rc)
+            rc = renderer_frame(r, &cam, t, w, h, err);
+        if (!rc)
+            rc = ph->be->present(ph->p, err);
+        if (!rc && o->out) {
+            char path[MAX_PATH_LEN];
+            snprintf(path, sizeof path, o->out, i);
+            rc = ph->be->read_rgba(ph->p, rgba, err);
+            if (!rc)
+                rc = image_write_png(path, rgba, w, h, err);
+            if (!rc && o->verbose)
+                printf("swell: frame %d t=%.3f s -> %s\n", i, t, path);
+        }
+        if (rc) {
+            swell_err_context(err, "frame %d (t = %.3f s)", i, t);
+            break;
+        }
+    }
+    free(rgba);
+    return rc;
+}
+
+static void print_start(const struct options *o, const struct platform_handle *ph,
+                        const struct gpu *g, const struct swell_tables *t, struct renderer *r)
+{
+    int w = 0, h = 0;
+    ph->be->size(ph->p, &w, &h);
+    printf("swell: platform %s, %dx%d\n", ph->be->name, w, h);
+    printf("swell: GL %s | %s | %s\n", g->caps.vendor, g->caps.renderer, g->caps.version);
+    printf("swell: tier %s (available %s%s)\n", gpu_tier_name(g->caps.tier),
+           gpu_tier_name(g->caps.tier_available), o->tier >= 0 ? ", forced" : "");
+    printf("swell: tables %s: %d patterns, %d frames over %.1f s, Hs %.2f m, wind %.1f m/s\n",
+           o->tables_dir ? o->tables_dir : "(baked in memory)", t->patterns, t->frames,
+           t->loop_period_s, t->hs_m, t->state.wind_speed_mps);
+    char desc[2048];
+    renderer_describe(r, desc, sizeof desc);
+    printf("%s%s", desc, desc[0] && desc[strlen(desc) - 1] != '\n' ? "\n" : "");
+    struct renderer_stats st;
+    renderer_get_stats(r, &st);
+    printf("swell: GPU memory %.2f MiB of %.2f MiB budget (renderer %.2f MiB), %d vertices, "
+           "%d triangles, %.1f KiB streamed per frame\n", g->bytes / 1048576.0,
+           g->budget_bytes / 1048576.0, st.gpu_bytes / 1048576.0, st.vertices, st.triangles,
+           st.cpu_bytes_per_frame / 1024.0);
+    fflush(stdout);
+}
+
+int main(int argc, char **argv)
+{
+    struct options o;
+    memset(&o, 0, sizeof o);
+    o.frames = -1;
+    o.tier = -1;
+    camera_defaults(&o.camera);
+    int rc = parse_args(argc, argv, &o);
+    if (rc)
+        return rc;
+    if (!o.tables_dir && !o.baking)
+        o.baking = 1;   /* default sea state, baked in memory */
+
+    struct swell_err err = { 0 };
+    struct swell_tables tables;
+    memset(&tables, 0, sizeof tables);
+    struct platform_handle ph = { 0 };
+    struct gpu gpu;
+    memset(&gpu, 0, sizeof gpu);
+    struct renderer *r = NULL;
+    int status = 1;
+
+    if (load_tables(&o, &tables, &err))
+        goto fail;
+    /* A GLES 3 context unless a lower tier is forced (then GLES 2, as such a device has). */
+    o.platform.gles_major = (o.tier < 0 || o.tier == TIER_GLES3) ? 3 : 2;
+    if (platform_open(&o.platform, &ph, &err))
+        goto fail_tables;
+    uint64_t budget = o.budget ? o.budget : tables.state.budget_bytes;
+    if (gpu_init(&gpu, o.tier, budget, &err))
+        goto fail_platform;
+    struct renderer_desc rd = {
+        .tables = &tables, .gpu = &gpu, .quality = o.quality, .geometry = o.geometry,
+        .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
+    };
+    if (renderer_create(&rd, &r, &err))
+        goto fail_gpu;
+    print_start(&o, &ph, &gpu, &tables, r);
+    if (run_frames(&o, &ph, r, ph.be == &platform_kms_backend, &err))
+        goto fail_renderer;
+    status = 0;
+
+fail_renderer:
+    renderer_destroy(r);
+fail_gpu:
+    gpu_shutdown(&gpu);
+fail_platform:
+    platform_close(&ph);
+fail_tables:
+    tables_destroy(&tables);
+fail:
+    if (status)
+        fprintf(stderr, "swell: %s (%s)\n", err.msg, swell_err_name(err.code));
+    return status;
+}
