@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "parse.h"
 #include "tables.h"
 
 /* GLES 3.0 / OES_texture_half_float enums, not in gl2.h. */
@@ -34,23 +35,6 @@ int gpu_tier_from_name(const char *name)
         if (strcmp(name, tier_names[i]) == 0)
             return i;
     return -1;
-}
-
-/* Exact token match in a space-separated extension list. */
-static int has_token(const char *list, const char *name)
-{
-    size_t n = strlen(name);
-    const char *p = list;
-    while (p && *p) {
-        while (*p == ' ')
-            p++;
-        const char *end = strchr(p, ' ');
-        size_t len = end ? (size_t)(end - p) : strlen(p);
-        if (len == n && memcmp(p, name, n) == 0)
-            return 1;
-        p += len;
-    }
-    return 0;
 }
 
 /* "OpenGL ES 3.2 Mesa ..." or "OpenGL ES-CM 1.1" -> major; 0 when unparsable. */
@@ -104,10 +88,10 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
         return rc;
 
     int es3 = c->context_major >= 3;
-    int ext_half = has_token(exts, "GL_OES_texture_half_float") &&
-                   has_token(exts, "GL_OES_texture_half_float_linear");
-    int ext_deriv = has_token(exts, "GL_OES_standard_derivatives");
-    int ext_lod = has_token(exts, "GL_EXT_shader_texture_lod");
+    int ext_half = parse_has_token(exts, "GL_OES_texture_half_float") &&
+                   parse_has_token(exts, "GL_OES_texture_half_float_linear");
+    int ext_deriv = parse_has_token(exts, "GL_OES_standard_derivatives");
+    int ext_lod = parse_has_token(exts, "GL_EXT_shader_texture_lod");
 
     if (es3)
         c->tier_available = TIER_GLES3;

@@ -151,3 +151,19 @@ int parse_doubles(const char *opt, const char *text, int n, double lo, double hi
     }
     return 0;
 }
+
+int parse_has_token(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    const char *p = list;
+    while (p && *p) {
+        while (*p == ' ')
+            p++;
+        const char *end = strchr(p, ' ');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        if (len == n && memcmp(p, name, n) == 0)
+            return 1;
+        p += len;
+    }
+    return 0;
+}

@@ -23,4 +23,8 @@ int parse_wxh(const char *opt, const char *text, int lo, int hi, int *w, int *h,
 int parse_doubles(const char *opt, const char *text, int n, double lo, double hi, double *out,
                   struct swell_err *err);
 
+/* 1 when `name` is a whole space-separated token of `list` (EGL/GL extension strings: exact
+ * names, never substrings - "GL_OES_texture_half_float" must not match "..._linear"). */
+int parse_has_token(const char *list, const char *name);
+
 #endif

@@ -12,6 +12,8 @@
 #include <GLES2/gl2.h>
 #include <GLES2/gl2ext.h>
 
+#include "parse.h"
+
 #define DEFAULT_WIDTH 1280
 #define DEFAULT_HEIGHT 720
 
@@ -22,23 +24,6 @@ struct platform {
     GLuint fbo, color_rb, color_tex, depth_rb;
     uint8_t *row;               /* one row, for the vertical flip in read_rgba */
 };
-
-/* Exact token match in a space-separated extension list (EGL or GL). */
-static int has_token(const char *list, const char *name)
-{
-    size_t n = strlen(name);
-    const char *p = list;
-    while (p && *p) {
-        while (*p == ' ')
-            p++;
-        const char *end = strchr(p, ' ');
-        size_t len = end ? (size_t)(end - p) : strlen(p);
-        if (len == n && memcmp(p, name, n) == 0)
-            return 1;
-        p += len;
-    }
-    return 0;
-}
 
 static int egl_fail(struct swell_err *err, const char *what, const char *hint)
 {
@@ -78,8 +63,8 @@ static int open_display(struct platform *p, struct swell_err *err)
     if (!client)
         return swell_fail(err, SWELL_E_UNSUPPORTED, "platform surfaceless: this EGL has no client "
                           "extensions (EGL_EXT_client_extensions); install Mesa's libEGL");
-    if (!has_token(client, "EGL_EXT_platform_base") ||
-        !has_token(client, "EGL_MESA_platform_surfaceless"))
+    if (!parse_has_token(client, "EGL_EXT_platform_base") ||
+        !parse_has_token(client, "EGL_MESA_platform_surfaceless"))
         return swell_fail(err, SWELL_E_UNSUPPORTED, "platform surfaceless: EGL lacks "
                           "EGL_EXT_platform_base or EGL_MESA_platform_surfaceless (client "
                           "extensions: %.600s); install Mesa's libEGL", client);
@@ -99,7 +84,7 @@ static int open_display(struct platform *p, struct swell_err *err)
         return rc;
     }
     const char *exts = eglQueryString(p->dpy, EGL_EXTENSIONS);
-    if (!has_token(exts, "EGL_KHR_surfaceless_context"))
+    if (!parse_has_token(exts, "EGL_KHR_surfaceless_context"))
         return swell_fail(err, SWELL_E_UNSUPPORTED, "platform surfaceless: the display lacks "
                           "EGL_KHR_surfaceless_context");
     return SWELL_OK;
@@ -140,7 +125,7 @@ static int create_fbo(struct platform *p, struct swell_err *err)
     int es3 = version && strncmp(version, "OpenGL ES 3", 11) == 0;
     glGenFramebuffers(1, &p->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, p->fbo);
-    if (es3 || has_token(exts, "GL_OES_rgb8_rgba8")) {
+    if (es3 || parse_has_token(exts, "GL_OES_rgb8_rgba8")) {
         glGenRenderbuffers(1, &p->color_rb);
         glBindRenderbuffer(GL_RENDERBUFFER, p->color_rb);
         glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8_OES, p->width, p->height);
