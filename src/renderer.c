@@ -1,0 +1,502 @@
+/* renderer.c - draws the ocean (renderer.h).
+ *
+ * gles2-min path (DESIGN.md): the CPU builds the geometry (grid.c: projected grid or near/far
+ * patches, displaced by the looping tables with Bruneton eq. 2 weights) and streams it into one
+ * VBO per frame; loop frames of the slope and whitecap tables are blended on the CPU (stream.c)
+ * into one texture per pattern and kind; patterns without a free texture unit are resolved per
+ * vertex. Sky: analytic, baked once into a stereographic map (sky.c). Shading: ocean.frag.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "fresnel.h"
+#include "grid.h"
+#include "renderer.h"
+#include "shader.h"
+#include "sky.h"
+#include "stream.h"
+
+#define SKY_MAP_SIZE 256
+#define FRESNEL_FALLBACK 64
+
+enum ocean_uniform {
+    OU_WORLD_TO_CLIP, OU_UV_OFFSET, OU_INV_SIZE, OU_FRESNEL_TEX, OU_SKY_TEX, OU_SKY_SCALE,
+    OU_SKY_SIZE, OU_SUN_DIR, OU_SUN_IRR, OU_SKY_IRR, OU_SEA_COLOUR, OU_UNRESOLVED, OU_EPSILON,
+    OU_EXPOSURE, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
+    OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
+    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_COUNT
+};
+static const char *const ocean_uniform_names[OU_COUNT] = {
+    "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
+    "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sky_irr", "sea_colour",
+    "unresolved_var", "whitecap_epsilon", "exposure", "slope_scale", "slope_bias", "wc_scale",
+    "wc_bias", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
+    "wc_tex2", "wc_tex3"
+};
+
+enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SKY_SCALE, SU_SUN_DIR, SU_SUN_RADIANCE,
+                   SU_EXPOSURE, SU_COUNT };
+static const char *const sky_uniform_names[SU_COUNT] = {
+    "clip_to_world_rel", "sky_tex", "sky_map_scale", "sun_dir_world", "sun_radiance", "exposure"
+};
+
+enum { A_POS = 0, A_REST, A_GEO_SLOPE, A_GEO_K, A_COUNT };
+static const struct shader_attrib ocean_attribs[A_COUNT] = {
+    { "a_pos", A_POS }, { "a_rest", A_REST }, { "a_geo_slope", A_GEO_SLOPE }, { "a_geo_k", A_GEO_K }
+};
+static const struct shader_attrib sky_attribs[1] = { { "a_ndc", 0 } };
+
+/* Texture units: 0 Fresnel, 1 sky, then slope/whitecap per fragment pattern slot. */
+enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_PATTERNS = 2 };
+
+struct fs_slot {
+    int pattern;                      /* table pattern index */
+    const struct swell_table *slope, *wc;
+    GLuint slope_tex, wc_tex;
+    uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
+};
+
+struct renderer {
+    struct renderer_desc d;
+    struct gpu *gpu;
+    const struct swell_tables *t;
+    struct grid *grid;
+    struct sky sky;
+    struct shader_program ocean, skyp;
+    GLint ou[OU_COUNT], su[SU_COUNT];
+    GLuint fresnel_tex, sky_tex, vbo, ibo, quad_vbo;
+    struct swell_table fresnel_own;   /* built here only when the tables lack one */
+    int nfs;                          /* patterns shaded from textures */
+    unsigned cpu_mask;                /* patterns resolved per vertex */
+    struct fs_slot slot[SWELL_MAX_PATTERNS];
+    float *verts;
+    struct stream_phase phase;
+    int phase_valid;
+    float exposure;
+    uint64_t stream_bytes;
+    uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
+};
+
+static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
+static const char *const geometry_names[GEOMETRY_COUNT] = { "grid", "patches" };
+
+const char *render_quality_name(int q)
+{
+    return q >= 0 && q < QUALITY_COUNT ? quality_names[q] : "?";
+}
+
+int render_quality_from_name(const char *name)
+{
+    for (int i = 0; name && i < QUALITY_COUNT; i++)
+        if (strcmp(name, quality_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+const char *geometry_kind_name(int g)
+{
+    return g >= 0 && g < GEOMETRY_COUNT ? geometry_names[g] : "?";
+}
+
+int geometry_kind_from_name(const char *name)
+{
+    for (int i = 0; name && i < GEOMETRY_COUNT; i++)
+        if (strcmp(name, geometry_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+static void resolve(struct renderer_desc *d)
+{
+    if (!d->shader_dir)
+        d->shader_dir = "shaders_gles";
+    if (d->grid_w <= 0)
+        d->grid_w = 160;
+    if (d->grid_h <= 0)
+        d->grid_h = 120;
+    if (d->sun_elev_deg == 0.0f)
+        d->sun_elev_deg = 30.0f;
+}
+
+void renderer_destroy(struct renderer *r)
+{
+    if (!r)
+        return;
+    for (int s = SWELL_MAX_PATTERNS - 1; s >= 0; s--) {
+        gpu_texture_destroy(r->gpu, &r->slot[s].wc_tex);
+        gpu_texture_destroy(r->gpu, &r->slot[s].slope_tex);
+        free(r->slot[s].wc_b);
+        free(r->slot[s].slope_b);
+    }
+    gpu_buffer_destroy(r->gpu, &r->quad_vbo);
+    gpu_buffer_destroy(r->gpu, &r->ibo);
+    gpu_buffer_destroy(r->gpu, &r->vbo);
+    gpu_texture_destroy(r->gpu, &r->sky_tex);
+    gpu_texture_destroy(r->gpu, &r->fresnel_tex);
+    shader_program_destroy(&r->skyp);
+    shader_program_destroy(&r->ocean);
+    free(r->fresnel_own.data);
+    free(r->verts);
+    sky_destroy(&r->sky);
+    grid_destroy(r->grid);
+    free(r);
+}
+
+/* Largest patterns go to the vertices: their waves are the ones the grid resolves best. */
+static void assign_patterns(struct renderer *r)
+{
+    int order[SWELL_MAX_PATTERNS], n = r->t->patterns;
+    int per = r->d.quality == QUALITY_HIGH ? 2 : 1;
+    int units = r->gpu->caps.texture_units > 0 ? r->gpu->caps.texture_units : 8;
+    int fs = (units - UNIT_PATTERNS) / per;
+    for (int i = 0; i < n; i++)
+        order[i] = i;
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && r->t->pattern[order[j]].size_m > r->t->pattern[order[j - 1]].size_m; j--) {
+            int tmp = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = tmp;
+        }
+    if (fs > n)
+        fs = n;
+    if (fs > SWELL_MAX_PATTERNS)
+        fs = SWELL_MAX_PATTERNS;
+    r->nfs = fs;
+    r->cpu_mask = 0;
+    for (int i = 0; i < n - fs; i++)
+        r->cpu_mask |= 1u << order[i];
+    for (int s = 0; s < fs; s++) {
+        struct fs_slot *sl = &r->slot[s];
+        sl->pattern = order[n - fs + s];
+        sl->slope = tables_find(r->t, TABLE_SLOPE, sl->pattern);
+        sl->wc = tables_find(r->t, TABLE_WHITECAP, sl->pattern);
+    }
+}
+
+static int upload_chain(GLuint tex, int w, int h, int levels, const uint8_t *data,
+                        const char *what, struct swell_err *err)
+{
+    size_t off = 0;
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int l = 0; l < levels; l++) {
+        int lw = w >> l > 0 ? w >> l : 1, lh = h >> l > 0 ? h >> l : 1;
+        glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, lw, lh, GL_RGBA, GL_UNSIGNED_BYTE, data + off);
+        off += 4 * (size_t)lw * lh;
+    }
+    return gpu_check(what, err);
+}
+
+static int create_textures(struct renderer *r, struct swell_err *err)
+{
+    const struct swell_table *fr = tables_find(r->t, TABLE_FRESNEL, -1);
+    int rc;
+    if (!fr) {
+        if ((rc = fresnel_hu_table(FRESNEL_FALLBACK, &r->fresnel_own, err)))
+            return rc;
+        fr = &r->fresnel_own;
+    }
+    if ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
+                                 "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
+        (rc = upload_chain(r->fresnel_tex, fr->width, fr->height, 1, fr->data,
+                           "renderer: Fresnel upload", err)))
+        return rc;
+    if ((rc = sky_bake(r->d.sun_elev_deg, r->d.sun_azim_deg, SKY_MAP_SIZE, &r->sky, err)) ||
+        (rc = gpu_texture_create(r->gpu, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
+                                 "renderer: sky map", &r->sky_tex, err)) ||
+        (rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, r->sky.data,
+                           "renderer: sky upload", err)))
+        return rc;
+    for (int s = 0; s < r->nfs; s++) {
+        struct fs_slot *sl = &r->slot[s];
+        if (!sl->slope || !sl->wc || sl->slope->format != FORMAT_RGBA8 ||
+            sl->wc->format != FORMAT_RGBA8)
+            return swell_fail(err, SWELL_E_FORMAT, "renderer: pattern %d lacks rgba8 slope or "
+                              "whitecap tables; re-bake for the gles2-min format", sl->pattern);
+        if ((rc = gpu_texture_create(r->gpu, sl->slope->width, sl->slope->height,
+                                     sl->slope->levels, FORMAT_RGBA8, 1, "renderer: slope",
+                                     &sl->slope_tex, err)))
+            return rc;
+        if (!(sl->slope_b = malloc(stream_blended_bytes(sl->slope))))
+            return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory to blend slopes");
+        r->stream_bytes += stream_blended_bytes(sl->slope);
+        if (r->d.quality != QUALITY_HIGH)
+            continue;
+        if ((rc = gpu_texture_create(r->gpu, sl->wc->width, sl->wc->height, sl->wc->levels,
+                                     FORMAT_RGBA8, 1, "renderer: whitecap", &sl->wc_tex, err)))
+            return rc;
+        if (!(sl->wc_b = malloc(stream_blended_bytes(sl->wc))))
+            return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory to blend whitecaps");
+        r->stream_bytes += stream_blended_bytes(sl->wc);
+    }
+    return 0;
+}
+
+static int build_programs(struct renderer *r, struct swell_err *err)
+{
+    char defines[128];
+    struct shader_desc od = { 0 }, sd = { 0 };
+    int rc;
+    snprintf(defines, sizeof(defines), "FS_PATTERNS=%d%s", r->nfs,
+             r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
+    od.dir = sd.dir = r->d.shader_dir;
+    od.caps = sd.caps = &r->gpu->caps;
+    od.vs_file = "ocean.vert";
+    od.fs_file = "ocean.frag";
+    od.defines = defines;
+    od.uniform_names = ocean_uniform_names;
+    od.uniform_count = OU_COUNT;
+    od.uniform_locations = r->ou;
+    od.attribs = ocean_attribs;
+    od.attrib_count = A_COUNT;
+    if ((rc = shader_program_build(&od, &r->ocean, err)))
+        return rc;
+    sd.vs_file = "sky.vert";
+    sd.fs_file = "sky.frag";
+    sd.uniform_names = sky_uniform_names;
+    sd.uniform_count = SU_COUNT;
+    sd.uniform_locations = r->su;
+    sd.attribs = sky_attribs;
+    sd.attrib_count = 1;
+    return shader_program_build(&sd, &r->skyp, err);
+}
+
+static int create_buffers(struct renderer *r, struct swell_err *err)
+{
+    static const float quad[8] = { -1.0f, -1.0f, 1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f };
+    size_t vbytes = sizeof(float) * GRID_FLOATS * (size_t)grid_vertex_count(r->grid);
+    size_t ibytes = sizeof(uint16_t) * (size_t)grid_index_count(r->grid);
+    int rc;
+    if (!(r->verts = calloc(1, vbytes)))
+        return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for %zu vertex bytes", vbytes);
+    if ((rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, vbytes, GL_STREAM_DRAW,
+                                "renderer: sea vertices", &r->vbo, err)) ||
+        (rc = gpu_buffer_create(r->gpu, GL_ELEMENT_ARRAY_BUFFER, ibytes, GL_STATIC_DRAW,
+                                "renderer: sea indices", &r->ibo, err)) ||
+        (rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, sizeof(quad), GL_STATIC_DRAW,
+                                "renderer: sky quad", &r->quad_vbo, err)))
+        return rc;
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, (GLsizeiptr)ibytes, grid_indices(r->grid));
+    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(quad), quad);
+    return gpu_check("renderer: buffer upload", err);
+}
+
+int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
+{
+    struct renderer *r;
+    struct grid_desc gd = { 0 };
+    int rc;
+    *out = NULL;
+    if (!desc || !desc->tables || !desc->gpu)
+        return swell_fail(err, SWELL_E_ARG, "renderer: descriptor needs tables and a gpu");
+    if (desc->quality < 0 || desc->quality >= QUALITY_COUNT || desc->geometry < 0 ||
+        desc->geometry >= GEOMETRY_COUNT)
+        return swell_fail(err, SWELL_E_ARG, "renderer: quality %d / geometry %d out of range",
+                          desc->quality, desc->geometry);
+    if (!(r = calloc(1, sizeof(*r))))
+        return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory");
+    r->d = *desc;
+    resolve(&r->d);
+    uint64_t before = desc->gpu->bytes;
+    r->gpu = desc->gpu;
+    r->t = desc->tables;
+    assign_patterns(r);
+    gd.tables = r->t;
+    gd.kind = r->d.geometry;
+    gd.w = r->d.grid_w;
+    gd.h = r->d.grid_h;
+    gd.cpu_patterns = r->cpu_mask;
+    if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
+        (rc = build_programs(r, err)) || (rc = create_buffers(r, err)))
+        goto fail;
+    r->gpu_bytes = r->gpu->bytes - before;
+    /* Automatic exposure: the sky's mean radiance E_sky / pi maps to x = 0.5, Reinhard 0.33
+     * before gamma (0.58 after), which leaves headroom for the brighter horizon and the glint. */
+    if (r->d.exposure > 0.0f) {
+        r->exposure = r->d.exposure;
+    } else {
+        float e = 0.2f * r->sky.sky_irr[0] + 0.7f * r->sky.sky_irr[1] + 0.1f * r->sky.sky_irr[2];
+        r->exposure = 0.5f * (float)M_PI / (e > 1e-4f ? e : 1e-4f);
+    }
+    *out = r;
+    return 0;
+fail:
+    swell_err_context(err, "renderer_create");
+    renderer_destroy(r);
+    return rc;
+}
+
+static void stream_textures(struct renderer *r, double t_s)
+{
+    struct stream_phase ph;
+    stream_loop_phase(t_s, r->t->loop_period_s, r->t->frames, &ph);
+    if (r->phase_valid && ph.f0 == r->phase.f0 && ph.w == r->phase.w)
+        return;
+    r->phase = ph;
+    r->phase_valid = 1;
+    for (int s = 0; s < r->nfs; s++) {
+        struct fs_slot *sl = &r->slot[s];
+        stream_blend(sl->slope, &ph, sl->slope_b);
+        upload_chain(sl->slope_tex, sl->slope->width, sl->slope->height, sl->slope->levels,
+                     sl->slope_b, "renderer: slope stream", NULL);
+        if (!sl->wc_tex)
+            continue;
+        stream_blend(sl->wc, &ph, sl->wc_b);
+        upload_chain(sl->wc_tex, sl->wc->width, sl->wc->height, sl->wc->levels, sl->wc_b,
+                     "renderer: whitecap stream", NULL);
+    }
+}
+
+static void bind_tex(int unit, GLuint tex, GLint loc)
+{
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    if (loc >= 0)
+        glUniform1i(loc, unit);
+}
+
+static void draw_sky(struct renderer *r, mat4 world_to_clip)
+{
+    mat4 inv;
+    /* The sun disc: E_sun over its solid angle (6.8e-5 sr), clamped to stay fp16-finite. */
+    float sun_rad[3];
+    for (int c = 0; c < 3; c++)
+        sun_rad[c] = fminf(r->sky.sun_irr[c] / 6.8e-5f, 3.0e4f);
+    glm_mat4_inv(world_to_clip, inv);
+    glUseProgram(r->skyp.program);
+    glUniformMatrix4fv(r->su[SU_CLIP_TO_WORLD], 1, GL_FALSE, (const GLfloat *)inv);
+    bind_tex(UNIT_SKY, r->sky_tex, r->su[SU_SKY_TEX]);
+    glUniform1f(r->su[SU_SKY_SCALE], r->sky.map_scale);
+    glUniform3fv(r->su[SU_SUN_DIR], 1, r->sky.sun_dir);
+    glUniform3fv(r->su[SU_SUN_RADIANCE], 1, sun_rad);
+    glUniform1f(r->su[SU_EXPOSURE], r->exposure);
+    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisableVertexAttribArray(0);
+}
+
+static void set_ocean_uniforms(struct renderer *r, const struct camera *cam, mat4 world_to_clip)
+{
+    const GLint *u = r->ou;
+    float off[SWELL_MAX_PATTERNS][2] = { { 0 } }, inv[SWELL_MAX_PATTERNS] = { 0 };
+    float ss[SWELL_MAX_PATTERNS][4] = { { 0 } }, sb[SWELL_MAX_PATTERNS][4] = { { 0 } };
+    float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
+    static const float sea_colour[3] = { 0.004f, 0.016f, 0.024f };
+    float unres[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
+    for (int s = 0; s < r->nfs; s++) {
+        struct fs_slot *sl = &r->slot[s];
+        grid_uv_offset(r->t, sl->pattern, cam, off[s]);
+        inv[s] = 1.0f / r->t->pattern[sl->pattern].size_m;
+        memcpy(ss[s], sl->slope->scale, sizeof(ss[s]));
+        memcpy(sb[s], sl->slope->bias, sizeof(sb[s]));
+        memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
+        memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
+        bind_tex(UNIT_PATTERNS + s, sl->slope_tex, u[OU_SLOPE_TEX0 + s]);
+        if (sl->wc_tex)
+            bind_tex(UNIT_PATTERNS + r->nfs + s, sl->wc_tex, u[OU_WC_TEX0 + s]);
+    }
+    glUniformMatrix4fv(u[OU_WORLD_TO_CLIP], 1, GL_FALSE, (const GLfloat *)world_to_clip);
+    glUniform2fv(u[OU_UV_OFFSET], SWELL_MAX_PATTERNS, &off[0][0]);
+    glUniform1fv(u[OU_INV_SIZE], SWELL_MAX_PATTERNS, inv);
+    glUniform4fv(u[OU_SLOPE_SCALE], SWELL_MAX_PATTERNS, &ss[0][0]);
+    glUniform4fv(u[OU_SLOPE_BIAS], SWELL_MAX_PATTERNS, &sb[0][0]);
+    glUniform4fv(u[OU_WC_SCALE], SWELL_MAX_PATTERNS, &ws[0][0]);
+    glUniform4fv(u[OU_WC_BIAS], SWELL_MAX_PATTERNS, &wb[0][0]);
+    bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
+    bind_tex(UNIT_SKY, r->sky_tex, u[OU_SKY_TEX]);
+    glUniform1f(u[OU_SKY_SCALE], r->sky.map_scale);
+    glUniform1f(u[OU_SKY_SIZE], (float)r->sky.size);
+    glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
+    glUniform3fv(u[OU_SUN_IRR], 1, r->sky.sun_irr);
+    glUniform3fv(u[OU_SKY_IRR], 1, r->sky.sky_irr);
+    glUniform3fv(u[OU_SEA_COLOUR], 1, sea_colour);
+    glUniform2fv(u[OU_UNRESOLVED], 1, unres);
+    glUniform1f(u[OU_EPSILON], r->t->whitecap_epsilon);
+    glUniform1f(u[OU_EXPOSURE], r->exposure);
+}
+
+int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
+                   int height, struct swell_err *err)
+{
+    mat4 view, proj, world_to_clip;
+    float aspect = height > 0 ? (float)width / (float)height : 1.0f;
+    GLint depth_bits = 0;
+    int nidx;
+    size_t vbytes = sizeof(float) * GRID_FLOATS * (size_t)grid_vertex_count(r->grid);
+    camera_view_rel(cam, view);
+    camera_projection(cam, aspect, proj);
+    glm_mat4_mul(proj, view, world_to_clip);
+    nidx = grid_update(r->grid, cam, aspect, t_s, r->verts);
+    stream_textures(r, t_s);
+
+    glViewport(0, 0, width, height);
+    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug the tests see */
+    glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
+    draw_sky(r, world_to_clip);
+    if (nidx > 0) {
+        /* Rows are ordered far to near, so without a depth buffer the painter's order holds. */
+        if (depth_bits > 0) {
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_LEQUAL);
+        }
+        glUseProgram(r->ocean.program);
+        set_ocean_uniforms(r, cam, world_to_clip);
+        glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
+        for (int a = 0; a < A_COUNT; a++)
+            glEnableVertexAttribArray((GLuint)a);
+        glVertexAttribPointer(A_POS, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                              (const void *)(GRID_A_POS * sizeof(float)));
+        glVertexAttribPointer(A_REST, 2, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                              (const void *)(GRID_A_REST * sizeof(float)));
+        glVertexAttribPointer(A_GEO_SLOPE, 4, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                              (const void *)(GRID_A_SLOPE * sizeof(float)));
+        glVertexAttribPointer(A_GEO_K, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                              (const void *)(GRID_A_K * sizeof(float)));
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
+        glDrawElements(GL_TRIANGLES, nidx, GL_UNSIGNED_SHORT, (const void *)0);
+        for (int a = 0; a < A_COUNT; a++)
+            glDisableVertexAttribArray((GLuint)a);
+        glDisable(GL_DEPTH_TEST);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    return gpu_check("renderer_frame", err);
+}
+
+void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
+{
+    memset(out, 0, sizeof(*out));
+    out->gpu_bytes = r->gpu_bytes;
+    out->cpu_bytes_per_frame = r->stream_bytes +
+        sizeof(float) * GRID_FLOATS * (uint64_t)grid_vertex_count(r->grid);
+    out->vertices = grid_vertex_count(r->grid);
+    out->triangles = grid_index_count(r->grid) / 3;
+}
+
+void renderer_describe(const struct renderer *r, char *buf, size_t size)
+{
+    int n = snprintf(buf, size,
+        "tier: %s (%d texture units)\n"
+        "geometry: %s, CPU-displaced (no vertex texture fetch), %d vertices streamed per frame\n"
+        "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x)\n"
+        "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
+        "shading: %s\n",
+        gpu_tier_name(r->gpu->caps.tier), r->gpu->caps.texture_units,
+        geometry_kind_name(r->d.geometry), grid_vertex_count(r->grid), r->nfs,
+        r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes,
+        r->d.quality == QUALITY_HIGH
+            ? "high: Ross BRDF sun (eq. 15), sky map LOD-biased (eq. 27), effective Fresnel "
+              "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"
+            : "low: Hu 2006 single pass (Fresnel texture, bumped sky, Phong sun)");
+    (void)n;
+}

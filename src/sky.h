@@ -1,0 +1,38 @@
+/* sky.h - an analytic, sun-dependent clear sky, baked into the stereographic sky map of
+ * Bruneton 2010 §5.2 (u = 1/2 + 1/2 [r_x r_y] / (1 + r_z): zenith at the centre, horizon on the
+ * inscribed circle) with a full mip chain for the filtered lookup of eq. 27.
+ *
+ * Model (why: cheap, no tables, physically motivated): single scattering in a flat homogeneous
+ * atmosphere of Rayleigh optical depth tau_R = (0.046, 0.108, 0.265) (680/550/440 nm, 8 km scale
+ * height) and Mie optical depth 0.025 (extinction 1.1x, Henyey-Greenstein g = 0.76), air masses
+ * from Kasten & Young 1989. Looking at air mass m_v with the sun at air mass m_s, the radiance is
+ *     L = E0 (tau_R p_R(gamma) + tau_M p_M(gamma)) m_v (e^{-tau m_s} - e^{-tau m_v}) / (tau (m_v - m_s))
+ * (the closed form of the single-scattering integral through the slab), E0 = 1 extraterrestrial
+ * sun irradiance, so every radiance is relative to it. Multiple scattering is ignored.
+ */
+#ifndef SWELL_SKY_H
+#define SWELL_SKY_H
+
+#include <stdint.h>
+#include "err.h"
+
+struct sky {
+    float sun_dir[3];       /* unit vector towards the sun, world */
+    float sun_irr[3];       /* sun irradiance at the sea (normal incidence), relative to E0 */
+    float sky_irr[3];       /* sky irradiance on a horizontal surface, relative to E0 */
+    float map_scale;        /* texel value v / 255 * map_scale = radiance, per channel */
+    int size, levels;       /* sky map: size x size, full mip chain */
+    uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed */
+};
+
+/* Sky radiance towards unit direction dir (z up); below the horizon the horizon's. */
+void sky_radiance(const struct sky *s, const float dir[3], float rgb[3]);
+
+/* Bake for a sun at elev_deg (may be negative: no sun term then) / azim_deg (CCW from +x). */
+int  sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct swell_err *err);
+void sky_destroy(struct sky *s);
+
+/* Byte offset of a mip level in data. */
+size_t sky_level_offset(const struct sky *s, int level);
+
+#endif

@@ -1,0 +1,216 @@
+/* test_grid.c - the CPU geometry and its helpers against independent references:
+ * projected-grid vertices against the camera matrices (camera.c), the eq. 2 weight against its
+ * formula, loop blending against a brute-force blend, the sky's closed form against numerical
+ * integration of the single-scattering integral, and the sky map's irradiance against a
+ * direct integral of sky_radiance.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "grid.h"
+#include "quantize.h"
+#include "sky.h"
+#include "stream.h"
+
+#define N 16
+#define F 4
+
+/* Flat tables (zero displacement): one pattern, so rest positions are the ray hits. */
+static void flat_tables(struct swell_tables *s)
+{
+    static const int kinds[3] = { TABLE_DISP, TABLE_SLOPE, TABLE_WHITECAP };
+    struct swell_err err;
+    memset(s, 0, sizeof(*s));
+    s->patterns = 1;
+    s->frames = F;
+    s->loop_period_s = 4.0f;
+    s->pattern[0].size_m = 50.0f;
+    for (int k = 0; k < 3; k++) {
+        struct swell_table *t = &s->table[s->count++];
+        int levels = kinds[k] == TABLE_DISP ? 1 : 5;
+        float *chain = calloc(quantize_chain_floats(N, N, F, levels), sizeof(float));
+        assert_non_null(chain);
+        t->kind = kinds[k];
+        t->pattern = 0;
+        t->format = FORMAT_RGBA8;
+        t->width = t->height = N;
+        t->layers = F;
+        t->levels = levels;
+        /* texel value = frame index in every channel: blending is then checkable exactly */
+        for (int f = 0; f < F; f++)
+            for (int i = 0; i < N * N * 4; i++)
+                chain[(size_t)f * N * N * 4 + i] = kinds[k] == TABLE_DISP ? 0.0f : (float)f;
+        quantize_build_mips(chain, N, N, F, levels);
+        assert_int_equal(quantize_table(t, chain, &err), 0);
+        free(chain);
+    }
+}
+
+/* Each projected-grid vertex on the sea plane, projected with camera.c's matrices, lands on
+ * the screen position the grid was built from. */
+static void test_projected_grid_hits_its_rays(void **state)
+{
+    struct swell_tables s;
+    struct grid *g;
+    struct grid_desc d = { 0 };
+    struct camera c;
+    struct swell_err err;
+    mat4 v, p, vp;
+    int w = 21, h = 15, checked = 0;
+    double prev_sy = 2.0;
+    float aspect = 16.0f / 9.0f;
+    (void)state;
+    flat_tables(&s);
+    d.tables = &s;
+    d.w = w;
+    d.h = h;
+    assert_int_equal(grid_create(&d, &g, &err), 0);
+    float *verts = calloc((size_t)grid_vertex_count(g) * GRID_FLOATS, sizeof(float));
+    camera_defaults(&c);
+    c.pos[2] = 20.0;
+    c.heading_deg = 70.0f;
+    c.pitch_deg = -35.0f;
+    assert_true(grid_update(g, &c, aspect, 1.0, verts) > 0);
+    camera_view_rel(&c, v);
+    camera_projection(&c, aspect, p);
+    glm_mat4_mul(p, v, vp);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            const float *x = verts + (size_t)(j * w + i) * GRID_FLOATS;
+            vec4 in = { x[GRID_A_POS], x[GRID_A_POS + 1], x[GRID_A_POS + 2], 1.0f }, o;
+            glm_mat4_mulv(vp, in, o);
+            double sx = o[0] / o[3], sy = o[1] / o[3];
+            /* columns are evenly spaced in NDC x over [-1.15, 1.15] */
+            assert_true(fabs(sx - (-1.15 + 2.3 * i / (w - 1))) < 1e-3);
+            /* the rest point lies on the sea plane */
+            assert_true(fabs(x[GRID_A_POS + 2] + 20.0f) < 1e-4f);
+            /* rows run down the screen from the horizon, evenly spaced */
+            if (i == 0 && j > 0)
+                assert_true(sy < prev_sy);
+            if (i == 0)
+                prev_sy = sy;
+            checked++;
+        }
+    assert_int_equal(checked, w * h);
+    free(verts);
+    grid_destroy(g);
+    tables_destroy(&s);
+}
+
+static void test_filter_weight(void **state)
+{
+    (void)state;
+    for (int k = 0; k <= 100; k++) {
+        float x = 1.0f + 4.0f * k / 100.0f;
+        double u = fmin(fmax((x - 2.0) / 2.0, 0.0), 1.0);
+        assert_true(fabs(grid_filter_weight(2.0f, 4.0f, x) - (3 * u * u - 2 * u * u * u)) < 1e-6);
+    }
+}
+
+/* Blend against a brute-force blend, and t vs t + k T. */
+static void test_stream_blend(void **state)
+{
+    struct swell_tables s;
+    struct stream_phase a, b;
+    (void)state;
+    flat_tables(&s);
+    const struct swell_table *t = tables_find(&s, TABLE_SLOPE, 0);
+    uint8_t *dst = malloc(stream_blended_bytes(t));
+    for (int k = 0; k < 50; k++) {
+        double ts = 0.173 * k;
+        stream_loop_phase(ts, 4.0, F, &a);
+        stream_loop_phase(ts + 7 * 4.0, 4.0, F, &b);
+        assert_int_equal(a.f0, b.f0);
+        assert_int_equal(a.w, b.w);
+        assert_int_equal(a.f1, (a.f0 + 1) % F);
+        /* phase (frames) from the definition */
+        double ph = fmod(ts, 4.0) / 4.0 * F;
+        assert_true(fabs(a.f0 + a.w / 256.0 - ph) <= 0.5 / 256.0 + 1e-9 ||
+                     fabs(a.f0 + a.w / 256.0 + F - ph) <= 0.5 / 256.0 + 1e-9);
+        stream_blend(t, &a, dst);
+        for (int l = 0; l < t->levels; l++) {
+            const uint8_t *x0 = t->data + table_offset(t, l, a.f0);
+            const uint8_t *x1 = t->data + table_offset(t, l, a.f1);
+            const uint8_t *d = dst + stream_level_offset(t, l);
+            for (size_t i = 0; i < table_level_bytes(t, l); i++) {
+                double ref = x0[i] + (x1[i] - x0[i]) * (a.w / 256.0);
+                assert_true(fabs(d[i] - ref) <= 0.5 + 1e-9);
+            }
+        }
+    }
+    free(dst);
+    tables_destroy(&s);
+}
+
+/* The closed form in sky.c against the single-scattering integral done numerically:
+ * L = E0 sum_s tau_s p_s m_v int_0^1 exp(-tau x m_s) exp(-tau (1-x) m_v) dx. For the zenith
+ * (m_v = 1) and a sun at the zenith (m_s = 1) the two attenuations multiply to exp(-tau), and the
+ * Rayleigh + Mie phase at gamma = 0 is known, so the radiance is (tau_R 3/(8 pi) + tau_M p_M(0))
+ * exp(-tau) with tau = tau_R + 1.1 tau_M. */
+static void test_sky_zenith_closed_form(void **state)
+{
+    struct sky s;
+    struct swell_err err;
+    static const double tau_r[3] = { 0.0464, 0.108, 0.265 };
+    const double tau_m = 0.0252, g = 0.76;
+    float up[3] = { 0.0f, 0.0f, 1.0f }, rgb[3];
+    (void)state;
+    assert_int_equal(sky_bake(90.0f, 0.0f, 16, &s, &err), 0);
+    sky_radiance(&s, up, rgb);
+    double pm = (1 - g * g) / (4 * M_PI * pow(1 + g * g - 2 * g, 1.5));
+    double m = 1.0 / (1.0 + 0.50572 * pow(96.07995, -1.6364));   /* Kasten-Young at 90 deg */
+    for (int c = 0; c < 3; c++) {
+        double tau = tau_r[c] + 1.1 * tau_m;
+        double ref = (tau_r[c] * 3.0 / (8.0 * M_PI) + tau_m * pm) * m * exp(-tau * m);
+        assert_true(fabs(rgb[c] - ref) < 1e-3 * ref);
+    }
+    sky_destroy(&s);
+}
+
+/* Sky irradiance from the map's stereographic quadrature against a direct (theta, phi)
+ * midpoint integral of sky_radiance. */
+static void test_sky_irradiance(void **state)
+{
+    struct sky s;
+    struct swell_err err;
+    double e[3] = { 0, 0, 0 };
+    int nt = 200, np = 400;
+    (void)state;
+    assert_int_equal(sky_bake(20.0f, 45.0f, 256, &s, &err), 0);
+    for (int i = 0; i < nt; i++)
+        for (int j = 0; j < np; j++) {
+            double th = (i + 0.5) * (M_PI / 2) / nt, ph = (j + 0.5) * 2 * M_PI / np;
+            float d[3] = { (float)(sin(th) * cos(ph)), (float)(sin(th) * sin(ph)), (float)cos(th) }, l[3];
+            sky_radiance(&s, d, l);
+            for (int c = 0; c < 3; c++)
+                e[c] += l[c] * cos(th) * sin(th) * (M_PI / 2 / nt) * (2 * M_PI / np);
+        }
+    for (int c = 0; c < 3; c++)
+        assert_true(fabs(s.sky_irr[c] - e[c]) < 0.02 * e[c]);
+    /* the map's level 0 texel at the centre is the zenith radiance, within quantisation */
+    {
+        float up[3] = { 0.0f, 0.0f, 1.0f }, l[3];
+        const uint8_t *t = s.data + 4 * ((size_t)(s.size / 2) * s.size + s.size / 2);
+        sky_radiance(&s, up, l);
+        for (int c = 0; c < 3; c++)
+            assert_true(fabs(t[c] / 255.0 * s.map_scale - l[c]) < 0.02 * s.map_scale);
+    }
+    sky_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_projected_grid_hits_its_rays),
+        cmocka_unit_test(test_filter_weight),
+        cmocka_unit_test(test_stream_blend),
+        cmocka_unit_test(test_sky_zenith_closed_form),
+        cmocka_unit_test(test_sky_irradiance),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
