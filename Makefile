@@ -39,7 +39,7 @@ FRAME_BIN := $(FRAME_SRC:tests/frame/%.c=$(BUILD)/tests/%)
 SWELL := $(BUILD)/swell
 SWELL_BAKE := $(BUILD)/swell-bake
 
-.PHONY: all deps run test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean
+.PHONY: all deps run test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden
 
 all: $(SWELL_BAKE) $(if $(wildcard src/swell.c),$(SWELL),)
 
@@ -104,3 +104,7 @@ clean:
 	rm -rf build
 
 -include $(shell find $(BUILD) -name "*.d" 2>/dev/null)
+
+# Regenerate the golden frames deliberately (then look at tests/golden/*.png before committing)
+golden: $(BUILD)/tests/test_golden $(SWELL)
+	SWELL_GOLDEN_UPDATE=1 SWELL_BUILD=$(BUILD) SWELL_TMP=$(BUILD)/tmp $(BUILD)/tests/test_golden
