@@ -22,6 +22,8 @@ struct grid_pattern {
     double inv_l;             /* 1 / L_i */
     float lambda_m;           /* characteristic wavelength for the eq. 2 weight, m */
     int cpu;
+    struct stream_phase phase;  /* of this pattern's own loop period (bake.c) */
+    int phase_valid;
 };
 
 struct grid {
@@ -32,8 +34,6 @@ struct grid {
     float *foot;              /* per-vertex footprint (cell size on the sea plane), m */
     float *fade;              /* per-vertex displacement factor (patches) */
     struct grid_pattern p[SWELL_MAX_PATTERNS];
-    struct stream_phase phase;
-    int phase_valid;
     double crest_m;           /* bound on the summed vertical displacement, m */
 };
 
@@ -205,15 +205,19 @@ fail:
     return rc;
 }
 
-/* Blend loop frames f0, f1 of every pattern once per phase change. */
-static void blend_tables(struct grid *g, const struct stream_phase *ph)
+/* Blend loop frames f0, f1 of every pattern once per phase change; each pattern loops with its
+ * own period T_i (a whole fraction of T, bake.c). */
+static void blend_tables(struct grid *g, double t_s)
 {
-    if (g->phase_valid && ph->f0 == g->phase.f0 && ph->w == g->phase.w)
-        return;
-    g->phase = *ph;
-    g->phase_valid = 1;
     for (int i = 0; i < g->t->patterns; i++) {
         struct grid_pattern *p = &g->p[i];
+        struct stream_phase phs;
+        const struct stream_phase *ph = &phs;
+        stream_loop_phase(t_s, tables_pattern_period(g->t, i), g->t->frames, &phs);
+        if (p->phase_valid && phs.f0 == p->phase.f0 && phs.w == p->phase.w)
+            continue;
+        p->phase = phs;
+        p->phase_valid = 1;
         const struct swell_table *d = p->disp;
         int f0 = ph->f0 < d->layers ? ph->f0 : 0, f1 = ph->f1 < d->layers ? ph->f1 : 0;
         const uint8_t *a = d->data + table_offset(d, 0, f0);
@@ -454,11 +458,9 @@ static int update_patches(struct grid *g, const struct camera *cam, float aspect
 
 int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts)
 {
-    struct stream_phase ph;
     double off[SWELL_MAX_PATTERNS][2];
     int n;
-    stream_loop_phase(t_s, g->t->loop_period_s, g->t->frames, &ph);
-    blend_tables(g, &ph);
+    blend_tables(g, t_s);
     n = g->kind == 0 ? update_projected(g, cam, aspect, verts)
                      : update_patches(g, cam, aspect, verts);
     if (n == 0)

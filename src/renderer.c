@@ -55,6 +55,8 @@ struct fs_slot {
     const struct swell_table *slope, *wc;
     GLuint slope_tex, wc_tex;
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
+    struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
+    int phase_valid;
 };
 
 struct renderer {
@@ -71,8 +73,6 @@ struct renderer {
     unsigned cpu_mask;                /* patterns resolved per vertex */
     struct fs_slot slot[SWELL_MAX_PATTERNS];
     float *verts;
-    struct stream_phase phase;
-    int phase_valid;
     float exposure;
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
@@ -331,14 +331,14 @@ fail:
 
 static void stream_textures(struct renderer *r, double t_s)
 {
-    struct stream_phase ph;
-    stream_loop_phase(t_s, r->t->loop_period_s, r->t->frames, &ph);
-    if (r->phase_valid && ph.f0 == r->phase.f0 && ph.w == r->phase.w)
-        return;
-    r->phase = ph;
-    r->phase_valid = 1;
     for (int s = 0; s < r->nfs; s++) {
         struct fs_slot *sl = &r->slot[s];
+        struct stream_phase ph;
+        stream_loop_phase(t_s, tables_pattern_period(r->t, sl->pattern), r->t->frames, &ph);
+        if (sl->phase_valid && ph.f0 == sl->phase.f0 && ph.w == sl->phase.w)
+            continue;
+        sl->phase = ph;
+        sl->phase_valid = 1;
         stream_blend(sl->slope, &ph, sl->slope_b);
         upload_chain(sl->slope_tex, sl->slope->width, sl->slope->height, sl->slope->levels,
                      sl->slope_b, "renderer: slope stream", NULL);

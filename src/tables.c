@@ -152,3 +152,9 @@ void tables_destroy(struct swell_tables *s)
     }
     s->count = 0;
 }
+
+float tables_pattern_period(const struct swell_tables *s, int pattern)
+{
+    float p = pattern >= 0 && pattern < SWELL_MAX_PATTERNS ? s->pattern[pattern].period_s : 0.0f;
+    return p > 0.0f ? p : s->loop_period_s;
+}

@@ -100,6 +100,9 @@ int table_alloc(struct swell_table *t, struct swell_err *err);
 /* Find a table by kind and pattern (-1 for global tables); NULL when absent. */
 const struct swell_table *tables_find(const struct swell_tables *s, int kind, int pattern);
 
+/* Loop period of pattern i's frames: pattern[i].period_s, or the set's T when that is 0. */
+float tables_pattern_period(const struct swell_tables *s, int pattern);
+
 /* Total bytes of all tables (what the renderer streams/uploads from). */
 size_t tables_bytes(const struct swell_tables *s);
 
