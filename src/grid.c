@@ -35,6 +35,7 @@ struct grid {
     float *fade;              /* per-vertex displacement factor (patches) */
     struct grid_pattern p[SWELL_MAX_PATTERNS];
     double crest_m;           /* bound on the summed vertical displacement, m */
+    double chop_m;            /* bound on the summed horizontal (choppy) displacement, m */
 };
 
 float grid_filter_weight(float a, float b, float x)
@@ -171,10 +172,14 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
         }
         {
             /* the largest |Dz| the table holds, over every frame */
-            float top = 0.0f;
-            for (size_t k = 0; k < table_bytes(p->disp); k += 4)
+            float top = 0.0f, side = 0.0f;
+            for (size_t k = 0; k < table_bytes(p->disp); k += 4) {
                 top = fmaxf(top, fabsf(quantize_decode(p->disp, 2, p->disp->data[k + 2])));
+                side = fmaxf(side, fabsf(quantize_decode(p->disp, 0, p->disp->data[k])));
+                side = fmaxf(side, fabsf(quantize_decode(p->disp, 1, p->disp->data[k + 1])));
+            }
             g->crest_m += top;
+            g->chop_m += side;
         }
         p->cpu = (d->cpu_patterns >> i) & 1u;
         if (p->cpu) {
@@ -369,7 +374,11 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
     double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
     double ty = tan(0.5 * fov), tx = ty * aspect;
     double dmax = far_distance(cam, aspect);
-    double top = 1.0 + GRID_MARGIN, bot = -1.0 - GRID_MARGIN;
+    /* Choppy displacement pulls the edge vertices sideways by up to chop_m; at the nearest
+     * visible distance (about alt_ray) that is an angle of chop_m / alt_ray, so widen the grid's
+     * margin by as much in NDC. */
+    double margin = GRID_MARGIN + fmin(g->chop_m / alt_ray / ty, 1.0);
+    double top = 1.0 + margin, bot = -1.0 - margin;
     basis(cam, fwd, right, up);
     if (up[2] * ty > 1e-9) {
         double hz = -fwd[2] / (ty * up[2]);   /* NDC y of the horizon */
@@ -381,7 +390,7 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
     for (int j = 0; j < g->h; j++) {
         double sy = top + (bot - top) * j / (g->h - 1);
         for (int i = 0; i < g->w; i++) {
-            double sx = -1.0 - GRID_MARGIN + 2.0 * (1.0 + GRID_MARGIN) * i / (g->w - 1);
+            double sx = -1.0 - margin + 2.0 * (1.0 + margin) * i / (g->w - 1);
             double d[3], t, dxy;
             float *vx = verts + (size_t)(j * g->w + i) * GRID_FLOATS;
             for (int c = 0; c < 3; c++)
