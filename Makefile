@@ -81,10 +81,12 @@ run: deps all
 	@tools/run.sh $(BUILD) $(TABLES_DIR)
 
 test: deps
+	@tools/install-deps.sh --kms
 	$(MAKE) test-unit
 	$(MAKE) test-unit-O0
 	$(MAKE) test-shaders
 	$(MAKE) test-frame
+	$(MAKE) test-kms
 	@echo "make test: all suites passed"
 
 test-unit: $(UNIT_BIN) $(SWELL_BAKE)
@@ -102,6 +104,10 @@ test-frame: $(FRAME_BIN) $(if $(wildcard src/swell.c),$(SWELL),)
 
 clean:
 	rm -rf build
+
+include tests/kms/kms.mk
+-include tools/bench.mk
+-include tools/fuzz.mk
 
 -include $(shell find $(BUILD) -name "*.d" 2>/dev/null)
 

@@ -1,0 +1,80 @@
+#!/bin/sh
+# guest-test.sh - the KMS checks, run inside the vkms VM by run-kms-test.sh (cwd: the repo).
+# Usage: tests/kms/guest-test.sh BUILD_DIR RESULT_DIR
+# Every step prints "-- ok NAME" or "-- FAIL NAME"; exit 0 only if all passed.
+set -u
+B=$1
+R=$2
+PROBE=$B/tests/kms_probe
+SWELL=$B/swell
+FRAMES=${SWELL_KMS_FRAMES:-3}      # swell frames per run (TCG + llvmpipe: seconds per frame)
+# KMS vs surfaceless for swell's frames. Not bit-identical: llvmpipe rasterises a window
+# surface and an FBO with opposite y orientation, so triangle-edge and depth-tie pixels go the
+# other way (measured: ~6.5% of pixels differ, mean channel difference 0.16, max 56). Allowed:
+PCT=${SWELL_KMS_MAX_PERCENT:-12}    # % of pixels that differ at all
+MEAN=${SWELL_KMS_MAX_MEAN:-0.5}     # mean absolute channel difference (0..255)
+failed=0
+
+step() {
+    name=$1
+    shift
+    echo "== $name: $*"
+    if "$@"; then echo "-- ok $name"; else echo "-- FAIL $name"; failed=1; fi
+}
+
+# Must fail, and its output must mention $1 (the actionable part of the error).
+# shellcheck disable=SC2317  # called through step()
+expect_error() {
+    want=$1
+    shift
+    out=$("$@" 2>&1) && { echo "$out"; echo "expected a failure"; return 1; }
+    echo "$out"
+    case "$out" in *"$want"*) return 0 ;; esac
+    echo "the error does not mention '$want'"
+    return 1
+}
+
+ls -l /dev/dri
+step atomic-640x480 "$PROBE" run --api atomic --mode 640x480 --frames 120 --max-fps 66 --verbose
+step legacy-preferred "$PROBE" run --api legacy --frames 30 --max-fps 66 --verbose
+step nearest-mode sh -c "'$PROBE' run --mode 650x470 --frames 2 | grep -q 'platform kms, 640x480'"
+# Signals arrive once 20 frames were flipped (start-up over 9p under TCG takes seconds).
+step sigterm "$PROBE" watch --term-when-exists "$R/probe-mark-term" -- "$PROBE" run --frames 0 \
+    --mode 640x480 --min-frames 20 --mark "$R/probe-mark-term"
+step sigint sh -c "'$PROBE' run --api legacy --frames 0 --min-frames 20 --mark '$R/probe-mark-int' &
+    p=\$!; while [ ! -e '$R/probe-mark-int' ] && kill -0 \$p 2>/dev/null; do sleep 0.1; done
+    kill -INT \$p; wait \$p"
+step bad-refresh expect_error "available:" "$PROBE" run --mode 640x480@7 --frames 1
+step bad-connector expect_error "Virtual-1" "$PROBE" run --connector HDMI-A-9 --frames 1
+step probe-vs-surfaceless sh -c "'$PROBE' run --mode 640x480 --frames 5 --out '$R/probe-kms.ppm' &&
+    '$PROBE' run --platform surfaceless --size 640x480 --frames 5 --out '$R/probe-sl.ppm' &&
+    '$PROBE' compare '$R/probe-kms.ppm' '$R/probe-sl.ppm'"
+
+if [ -x "$SWELL" ]; then
+    # --fps makes the animation step exactly on KMS too (default there: the wall clock), so
+    # frame i is the same instant on both platforms.
+    common="--fps 30 --frames $FRAMES --tier gles2-min"
+    # shellcheck disable=SC2086
+    step swell-kms "$PROBE" watch -- "$SWELL" --platform kms --mode 640x480 $common \
+        --out "$R/swell-kms-%04d.png"
+    # shellcheck disable=SC2086
+    step swell-surfaceless "$SWELL" --platform surfaceless --size 640x480 $common \
+        --out "$R/swell-sl-%04d.png"
+    i=0
+    while [ "$i" -lt "$FRAMES" ]; do
+        n=$(printf %04d "$i")
+        step "swell-frame-$n-kms-vs-surfaceless" "$PROBE" compare "$R/swell-kms-$n.png" \
+            "$R/swell-sl-$n.png" --max-diff 255 --max-percent "$PCT" --max-mean "$MEAN"
+        i=$((i + 1))
+    done
+    # SIGTERM once the second frame (a real page flip) was scanned out and saved.
+    step swell-sigterm "$PROBE" watch --term-when-exists "$R/swell-sig-0001.png" -- "$SWELL" \
+        --platform kms --mode 640x480 --frames 0 --fps 30 --tier gles2-min \
+        --out "$R/swell-sig-%04d.png"
+elif [ "${CI:-}" = true ]; then
+    echo "-- FAIL swell: $SWELL not built (CI=true: the renderer must be tested on KMS)"
+    failed=1
+else
+    echo "-- skip swell: $SWELL not built"
+fi
+exit $failed
