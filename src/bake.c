@@ -9,6 +9,11 @@
  * wind-speed model (algorithm 1 applied to the union). The renderer combines the maps the same
  * way. tests/unit/test_bake.c checks on a common fine grid that the union's coverage matches
  * the model and that its foam lies where the full multi-pattern Jacobian breaks.
+ *
+ * Only patterns at least FOAM_MIN_PATTERN_M across carry whitecaps (always the largest): a
+ * pattern of a few metres repeats every few metres, and foam (and Dupuy's k_i) drawn from it
+ * showed as a visible lattice in storm scenes. Whitecaps are features of the dominant waves;
+ * the small patterns keep their slopes and contribute the constant 1/n to Dupuy's j (eq. 7).
  */
 #include "bake.h"
 
@@ -24,6 +29,7 @@
 #include "whitecap.h"
 
 #define FRESNEL_SIZE 64
+#define FOAM_MIN_PATTERN_M 16.0f
 
 struct size_choice { int n_fs, frames; };
 
@@ -140,6 +146,7 @@ struct pattern_work {
     float *lmin;                  /* F * N * N */
     float *lmin_sorted;
     double k_mean, k_var;
+    int breaks;                   /* carries whitecaps (see top) */
     double alpha;                 /* eq. 11's per-frame foam decay for this pattern's dt */
 };
 
@@ -230,7 +237,8 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
         float *lm = w->lmin + texels * (size_t)f;
         for (size_t i = 0; i < texels; i++) {
             float a = fl.jxx[i], b = fl.jyy[i], c = fl.jxy[i];
-            float k = whitecap_dupuy_k(a, b, c, s->patterns);   /* Dupuy 2012 eq. 7 */
+            float k = w->breaks ? whitecap_dupuy_k(a, b, c, s->patterns)  /* Dupuy eq. 7 */
+                                : 1.0f / (float)s->patterns;
             float lmn = whitecap_lambda_min(a, b, c);
             sl[i * 4 + 0] = fl.sx[i];
             sl[i * 4 + 1] = fl.sy[i];
@@ -299,12 +307,12 @@ static float solve_threshold(struct pattern_work *w, int np, size_t count, doubl
 /* Foam loops (eq. 7-8) of every pattern at threshold lt; *keep = prod (1 - W_i), W_i by eq. 9.
  * With store set, the opacities go into the whitecap chains. */
 static int foam_union(const struct seastate *s, const struct swell_tables *out,
-                      struct pattern_work *w, float lt, float *tmp, int store, double *keep,
-                      struct swell_err *err)
+                      struct pattern_work *w, int np, float lt, float *tmp, int store,
+                      double *keep, struct swell_err *err)
 {
     size_t texels = (size_t)s->size_fs * (size_t)s->size_fs, count = texels * (size_t)s->frames;
     *keep = 1.0;
-    for (int i = 0; i < s->patterns; i++) {
+    for (int i = 0; i < np; i++) {
         float dt = out->pattern[i].period_s / s->frames;
         int r = whitecap_foam_loop(w[i].lmin, s->frames, texels, lt, dt, s->foam_half_life_s,
                                    tmp, err);
@@ -346,8 +354,12 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
 
     int n = s.size_fs, F = s.frames, levels = ilog2(n) + 1;
     size_t texels = (size_t)n * (size_t)n, count = texels * (size_t)F;
-    for (int i = 0; i < s.patterns; i++)
+    int foam_patterns = 0;   /* patterns are largest first: whitecaps on a leading run */
+    for (int i = 0; i < s.patterns; i++) {
         out->pattern[i].period_s = pattern_period(&s, &out->pattern[i]);
+        work[i].breaks = i == 0 || out->pattern[i].size_m >= FOAM_MIN_PATTERN_M;
+        foam_patterns += work[i].breaks;
+    }
     for (int i = 0; i < s.patterns; i++)
         if ((r = bake_pattern_fields(&s, &out->pattern[i], i, &work[i], opts, out, err)))
             goto fail;
@@ -363,7 +375,7 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
     double w_model = whitecap_model_fraction(s.whitecap_model, s.wind_speed_mps);
     double theta_union = 0.0;
     out->whitecap_fraction_model = (float)w_model;
-    float lt = solve_threshold(work, s.patterns, count, w_model, &theta_union);
+    float lt = solve_threshold(work, foam_patterns, count, w_model, &theta_union);
     out->lambda_t_algorithm1 = lt;
     tmp = malloc(count * sizeof(float));
     if (!tmp) {
@@ -375,13 +387,14 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
      * the model. Refine lambda_T by bisection on the measured union fraction of the loop,
      * starting from algorithm 1's value (monotone: a higher threshold only adds foam). */
     float lo = work[0].lmin_sorted[0], hi = work[0].lmin_sorted[count - 1];
-    for (int i = 1; i < s.patterns; i++) {
+    for (int i = 1; i < foam_patterns; i++) {
         lo = fminf(lo, work[i].lmin_sorted[0]);
         hi = fmaxf(hi, work[i].lmin_sorted[count - 1]);
     }
     double keep = 1.0;
     for (int it = 0; it < THRESHOLD_ITERATIONS + 1; it++) {
-        if ((r = foam_union(&s, out, work, lt, tmp, it == THRESHOLD_ITERATIONS, &keep, err)))
+        if ((r = foam_union(&s, out, work, foam_patterns, lt, tmp, it == THRESHOLD_ITERATIONS,
+                            &keep, err)))
             goto fail;
         if (it == THRESHOLD_ITERATIONS)
             break;
