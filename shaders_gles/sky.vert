@@ -5,7 +5,9 @@ varying vec3 v_ray_world;
 
 void main()
 {
-    vec4 p = clip_to_world_rel * vec4(a_ndc, 1.0, 1.0);
+    // Unproject the near-plane corner: the far plane is thousands of kilometres away and its
+    // inverse is so ill-conditioned in float that every corner came out the same direction.
+    vec4 p = clip_to_world_rel * vec4(a_ndc, -1.0, 1.0);
     v_ray_world = p.xyz / p.w;
     gl_Position = vec4(a_ndc, 0.999999, 1.0);
 }
