@@ -28,6 +28,8 @@ float erf_as(float x)
 // GLES2 GPUs where pow() is exp2(log2()) per channel (4x slower on llvmpipe, measured).
 vec3 tone_map(vec3 radiance, float exposure)
 {
-    vec3 x = exposure * max(radiance, vec3(0.0));
+    // Clamped before the division: the sun disc times the exposure overflows fp16 (65504), and
+    // inf / inf came out as a dark NaN dot where the sun should be brightest.
+    vec3 x = min(exposure * max(radiance, vec3(0.0)), vec3(1.0e4));
     return sqrt(x / (vec3(1.0) + x));
 }
