@@ -20,6 +20,12 @@ fi
 frames_dir=build/frames
 mkdir -p "$frames_dir"
 # --platform auto: KMS when a display is connected (fullscreen until Esc/q or Ctrl-C),
-# otherwise surfaceless PNG frames.
-"$swell" --platform auto --tables "$tables" --size 1280x720 --frames 48 --fps 12 \
-    --path surface --out "$frames_dir/frame%04d.png"
+# otherwise surfaceless PNG frames: 48 frames at 3 per second span the 16 s loop period, so the
+# sequence loops seamlessly (frame 48 would equal frame 0).
+if [ -e /dev/dri/card0 ]; then
+    "$swell" --platform auto --tables "$tables"
+else
+    "$swell" --platform surfaceless --tables "$tables" --size 1280x720 --frames 48 --fps 3 \
+        --camera 0,0,8 --pitch -8 --out "$frames_dir/frame%04d.png"
+    echo "swell: wrote 48 looping frames to $frames_dir/frame0000.png .. frame0047.png"
+fi
