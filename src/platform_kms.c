@@ -29,8 +29,8 @@
  * buffer) and converts XRGB8888 to RGBA8, top row first. Since present() returns only after the
  * flip completed, that is the frame just presented.
  */
-#include "parse.h"
 #include "platform.h"
+#include "parse.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -1,8 +1,9 @@
 /* swell - render the ocean: fullscreen on a KMS display, or offscreen (EGL surfaceless) to PNG.
  *
  * main is a straight line: options -> tables (load, or bake in memory) -> platform -> gpu ->
- * renderer -> frame loop -> PNG output or present -> teardown in reverse. Library code returns
- * errors; only this file prints and exits (0 ok, 1 runtime failure, 2 usage error).
+ * renderer -> frame loop -> PNG output or present (or, with --bench, bench.c's timed frames
+ * against the baseline quad -> summary and --results JSON) -> teardown in reverse. Library code
+ * returns errors; only this file prints and exits (0 ok, 1 runtime failure, 2 usage error).
  */
 #include <math.h>
 #include <stdio.h>
@@ -11,6 +12,7 @@
 #include <time.h>
 
 #include "bake.h"
+#include "bench.h"
 #include "camera.h"
 #include "gpu.h"
 #include "image.h"
@@ -40,6 +42,10 @@ struct options {
     struct camera camera;
     int quality, geometry, tier;
     int verbose;
+    int bench;                  /* --bench: time frames against the baseline quad */
+    int warmup;                 /* --warmup: untimed bench frames; -1 = default */
+    const char *results;        /* --results FILE.json */
+    const char *scene;          /* --scene: label in the results */
 };
 
 static void usage(FILE *f)
@@ -80,6 +86,13 @@ static void usage(FILE *f)
 "  --connector NAME  connector such as HDMI-A-1 or Virtual-1    [first connected]\n"
 "  --mode WxH[@HZ]   display mode, exact else nearest                   [preferred]\n"
 "  --kms-api A       atomic | legacy | auto (atomic when available)            [auto]\n"
+"Benchmark (see docs/bench.md, make bench):\n"
+"  --bench           time whole frames (each ends with glFinish) against a one-textured-\n"
+"                    fullscreen-quad baseline drawn in the same run; --frames N timed\n"
+"                    frames (>= 100 for published numbers), --time/--fps/--path as above [100]\n"
+"  --warmup N        untimed frames before the timed ones                          [10]\n"
+"  --results FILE    write the measurements as JSON (atomically)                 [none]\n"
+"  --scene NAME      scene name recorded in the results             [tables or preset]\n"
 "Other:\n"
 "  --verbose         print the chosen device, mode, EGL config and per-frame stats\n"
 "  --help            this text\n"
@@ -143,6 +156,7 @@ static int is_value_option(const char *a)
         "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
         "--quality", "--geometry", "--tier", "--device", "--connector", "--mode", "--kms-api",
+        "--warmup", "--results", "--scene",
     };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (!strcmp(a, names[i]))
@@ -166,6 +180,10 @@ static int parse_args(int argc, char **argv, struct options *o)
         }
         if (!strcmp(a, "--verbose")) {
             o->verbose = o->platform.verbose = 1;
+            continue;
+        }
+        if (!strcmp(a, "--bench")) {
+            o->bench = 1;
             continue;
         }
         if (strncmp(a, "--", 2) != 0) {
@@ -249,6 +267,14 @@ static int parse_args(int argc, char **argv, struct options *o)
             o->platform.connector = v;
         } else if (!strcmp(a, "--mode")) {
             r = parse_mode(a, v, &o->platform, &err);
+        } else if (!strcmp(a, "--warmup")) {
+            r = parse_int(a, v, 0, 100000, &o->warmup, &err);
+        } else if (!strcmp(a, "--results")) {
+            o->results = v;
+            if (!v[0])
+                r = swell_fail(&err, SWELL_E_ARG, "--results: empty file name");
+        } else if (!strcmp(a, "--scene")) {
+            o->scene = v;
         } else if (!strcmp(a, "--kms-api")) {
             if (!strcmp(v, "auto")) o->platform.kms_api = KMS_API_AUTO;
             else if (!strcmp(v, "atomic")) o->platform.kms_api = KMS_API_ATOMIC;
@@ -266,6 +292,15 @@ static int parse_args(int argc, char **argv, struct options *o)
     if (o->tables_dir && o->baking) {
         fprintf(stderr, "swell: --tables loads baked tables; --preset/--wind bake new ones: "
                 "give one or the other\n");
+        return 2;
+    }
+    if (!o->bench && (o->results || o->warmup >= 0 || o->scene)) {
+        fprintf(stderr, "swell: --results, --warmup and --scene go with --bench\n");
+        return 2;
+    }
+    if (o->bench && (o->out || o->duration_s > 0 || o->frames == 0)) {
+        fprintf(stderr, "swell: --bench times a fixed number of frames (--frames N, N >= 1) "
+                "and writes no PNG: drop --out/--duration\n");
         return 2;
     }
     if (o->out && o->frames != 1 && out_conversions(o->out) == 0 &&
@@ -361,6 +396,36 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
     return rc;
 }
 
+/* --bench: bench.c runs the frames; this prints the one-line summary and writes --results. */
+static int run_bench(const struct options *o, struct platform_handle *ph, struct gpu *g,
+                     struct renderer *r, struct swell_err *err)
+{
+    struct bench_desc bd = {
+        .ph = ph, .renderer = r, .gpu = g, .camera = o->camera, .path = o->path,
+        .time0_s = o->time0_s, .step_s = 1.0 / (o->fps > 0 ? o->fps : DEFAULT_FPS),
+        .warmup = o->warmup < 0 ? 0 : o->warmup == 0 ? -1 : o->warmup,
+        .frames = o->frames > 0 ? o->frames : 0,
+        .scene = o->scene ? o->scene : o->tables_dir ? o->tables_dir : "baked in memory",
+        .quality = render_quality_name(o->quality), .geometry = geometry_kind_name(o->geometry),
+    };
+    struct bench_result res;
+    int rc = bench_run(&bd, &res, err);
+    if (rc)
+        return rc;
+    char line[512];
+    bench_format_summary(&res, line, sizeof line);
+    printf("swell: %s\n", line);
+    if (!res.cpu_valid)
+        printf("swell: bench: %s\n", res.notes);
+    if (o->results) {
+        rc = bench_write_json(o->results, &res, err);
+        if (!rc)
+            printf("swell: bench: results in %s\n", o->results);
+    }
+    fflush(stdout);
+    return rc;
+}
+
 static void print_start(const struct options *o, const struct platform_handle *ph,
                         const struct gpu *g, const struct swell_tables *t, struct renderer *r)
 {
@@ -390,6 +455,7 @@ int main(int argc, char **argv)
     struct options o;
     memset(&o, 0, sizeof o);
     o.frames = -1;
+    o.warmup = -1;
     o.tier = -1;
     camera_defaults(&o.camera);
     int rc = parse_args(argc, argv, &o);
@@ -423,7 +489,8 @@ int main(int argc, char **argv)
     if (renderer_create(&rd, &r, &err))
         goto fail_gpu;
     print_start(&o, &ph, &gpu, &tables, r);
-    if (run_frames(&o, &ph, r, ph.be == &platform_kms_backend, &err))
+    if (o.bench ? run_bench(&o, &ph, &gpu, r, &err)
+                : run_frames(&o, &ph, r, ph.be == &platform_kms_backend, &err))
         goto fail_renderer;
     status = 0;
 

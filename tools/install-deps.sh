@@ -15,7 +15,8 @@ libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libgbm-dev
 libdrm-dev libinput-dev libudev-dev
 glslang-tools
 valgrind
-clang libclang-rt-14-dev"
+clang libclang-rt-14-dev
+jq gnuplot-nox"
 KMS_PKGS="qemu-system-x86 busybox-static linux-image-amd64 kmod xz-utils cpio"
 
 want="$PKGS"
