@@ -374,10 +374,11 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
     double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
     double ty = tan(0.5 * fov), tx = ty * aspect;
     double dmax = far_distance(cam, aspect);
-    /* Choppy displacement pulls the edge vertices sideways by up to chop_m; at the nearest
-     * visible distance (about alt_ray) that is an angle of chop_m / alt_ray, so widen the grid's
-     * margin by as much in NDC. */
-    double margin = GRID_MARGIN + fmin(g->chop_m / alt_ray / ty, 1.0);
+    /* Choppy displacement pulls the edge vertices sideways by up to chop_m, and a crest lifts a
+     * bottom-edge vertex by up to crest_m; at the nearest visible distance (about alt_ray) that
+     * is an angle of (chop_m + crest_m) / alt_ray, so widen the grid's margin by as much in NDC
+     * (the storm golden frame showed an uncovered corner with the sideways term alone). */
+    double margin = GRID_MARGIN + fmin((g->chop_m + g->crest_m) / alt_ray / ty, 1.5);
     double top = 1.0 + margin, bot = -1.0 - margin;
     basis(cam, fwd, right, up);
     if (up[2] * ty > 1e-9) {

@@ -358,9 +358,23 @@ static void bind_tex(int unit, GLuint tex, GLint loc)
         glUniform1i(loc, unit);
 }
 
-static void draw_sky(struct renderer *r, mat4 world_to_clip)
+/* The sky is drawn only above the horizon (a scissor from just below the horizon's row up):
+ * below it the sea covers every pixel, and a full-screen sky pass there was pure overdraw. */
+static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
+                     int width, int height)
 {
     mat4 inv;
+    float h = cam->heading_deg * (float)(M_PI / 180.0);
+    vec4 far = { 1e6f * cosf(h), 1e6f * sinf(h), -(float)cam->pos[2], 1.0f }, clip;
+    glm_mat4_mulv(world_to_clip, far, clip);
+    float hz = clip[3] > 0.0f ? clip[1] / clip[3] : -1.0f;   /* NDC y of the horizon */
+    int y0 = (int)floorf((0.5f * (hz - 0.1f) + 0.5f) * (float)height);
+    if (y0 >= height)
+        return;
+    if (y0 < 0)
+        y0 = 0;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, y0, width, height - y0);
     /* The sun disc: E_sun over its solid angle (6.8e-5 sr), clamped to stay fp16-finite. */
     float sun_rad[3];
     for (int c = 0; c < 3; c++)
@@ -378,6 +392,7 @@ static void draw_sky(struct renderer *r, mat4 world_to_clip)
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     glDisableVertexAttribArray(0);
+    glDisable(GL_SCISSOR_TEST);
 }
 
 static void set_ocean_uniforms(struct renderer *r, const struct camera *cam, mat4 world_to_clip)
@@ -442,7 +457,7 @@ int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int
     glDepthMask(GL_TRUE);
     glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug the tests see */
     glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
-    draw_sky(r, world_to_clip);
+    draw_sky(r, cam, world_to_clip, width, height);
     if (nidx > 0) {
         /* Rows are ordered far to near, so without a depth buffer the painter's order holds. */
         if (depth_bits > 0) {
