@@ -16,6 +16,7 @@
 #include "camera.h"
 #include "gpu.h"
 #include "image.h"
+#include "input.h"
 #include "parse.h"
 #include "platform.h"
 #include "preset.h"
@@ -359,10 +360,27 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (!rgba)
             return swell_fail(err, SWELL_E_NOMEM, "no memory for a %dx%d read-back", w, h);
     }
+    /* Keyboard on KMS (libinput); with no input devices it is simply inactive. */
+    struct input *in = NULL;
+    struct input_state keys;
+    input_state_init(&keys);
+    if (is_kms) {
+        struct input_desc idesc = { 0 };
+        char line[256];
+        int irc = input_create(&idesc, &in, err);
+        if (irc) {
+            free(rgba);
+            return irc;
+        }
+        input_describe(in, line, sizeof line);
+        printf("swell: %s\n", line);
+    }
     /* On KMS without --fps the animation follows the clock; otherwise it steps exactly. */
     int wall_clock = is_kms && o->fps <= 0;
     double step = 1.0 / (o->fps > 0 ? o->fps : DEFAULT_FPS);
-    double start = now_s();
+    double start = now_s(), prev = start;
+    struct camera live = o->camera;     /* moved by the keyboard when no --path is given */
+    int shots = 0;
     int rc = SWELL_OK;
     for (int i = 0; frames == 0 || i < frames; i++) {
         double t = wall_clock ? o->time0_s + (now_s() - start) : o->time0_s + i * step;
@@ -370,7 +388,17 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
             break;
         if (ph->be->should_quit(ph->p))
             break;
-        struct camera cam = o->camera;
+        double now = now_s();
+        input_poll(in, &keys);
+        if (keys.quit)
+            break;
+        input_camera_step(&keys, now - prev, &live);
+        prev = now;
+        if (keys.preset != INPUT_PRESET_NONE)
+            printf("swell: preset %s requested: restart with --preset %s (tables are not "
+                   "re-baked while running)\n", input_preset_name(keys.preset),
+                   input_preset_name(keys.preset));
+        struct camera cam = live;
         if (o->path > CAMERA_PATH_NONE)
             camera_path_at(o->path, t, &cam);
         rc = ph->be->begin_frame(ph->p, err);
@@ -387,11 +415,26 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
             if (!rc && o->verbose)
                 printf("swell: frame %d t=%.3f s -> %s\n", i, t, path);
         }
+        if (!rc && keys.screenshot) {
+            char path[64];
+            size_t bytes = (size_t)w * (size_t)h * 4;
+            uint8_t *shot = rgba ? rgba : malloc(bytes);
+            snprintf(path, sizeof path, "swell-shot-%04d.png", shots++);
+            rc = shot ? ph->be->read_rgba(ph->p, shot, err)
+                      : swell_fail(err, SWELL_E_NOMEM, "no memory for a screenshot");
+            if (!rc)
+                rc = image_write_png(path, shot, w, h, err);
+            if (!rc)
+                printf("swell: screenshot %s\n", path);
+            if (shot != rgba)
+                free(shot);
+        }
         if (rc) {
             swell_err_context(err, "frame %d (t = %.3f s)", i, t);
             break;
         }
     }
+    input_destroy(in);
     free(rgba);
     return rc;
 }
