@@ -27,12 +27,15 @@ int parse_double(const char *opt, const char *text, double lo, double hi, const 
 {
     const char *end;
     double v;
+    /* A unitless option (a spreading exponent) reads "(allowed 1 to 100)", not "(, allowed". */
+    const char *sep = unit && *unit ? ", " : "";
+    unit = unit ? unit : "";
     if (scan_double(text, &end, &v) || *end)
-        return swell_fail(err, SWELL_E_ARG, "%s: '%s' is not a number (%s, allowed %g to %g)",
-                          opt, text ? text : "", unit, lo, hi);
+        return swell_fail(err, SWELL_E_ARG, "%s: '%s' is not a number (%s%sallowed %g to %g)",
+                          opt, text ? text : "", unit, sep, lo, hi);
     if (!(v >= lo && v <= hi))
-        return swell_fail(err, SWELL_E_ARG, "%s: %s is out of range (%s, allowed %g to %g)", opt,
-                          text, unit, lo, hi);
+        return swell_fail(err, SWELL_E_ARG, "%s: %s is out of range (%s%sallowed %g to %g)", opt,
+                          text, unit, sep, lo, hi);
     *out = v;
     return 0;
 }

@@ -59,7 +59,9 @@ int seastate_validate(const struct seastate *s, struct swell_err *err)
     if ((r = check_range("spread", "", s->spread, 1.0, 100.0, err))) return r;
     if ((r = check_range("patterns", "", s->patterns, 1, 4, err))) return r;
     if ((r = check_range("loop_period_s", "s", s->loop_period_s, 2.0, 600.0, err))) return r;
-    if (s->frames != 0 && (r = check_range("frames", "", s->frames, 2, 256, err))) return r;
+    /* F frames carry harmonics up to F/2 - 1 of a pattern's loop (bake.c pattern_period, Hu
+     * 2006 §2.1): F = 2 or 3 carries none and would bake a flat sea, so F starts at 4. */
+    if (s->frames != 0 && (r = check_range("frames", "", s->frames, 4, 256, err))) return r;
     if (s->size_fs != 0 && (!is_pow2(s->size_fs) || s->size_fs < 16 || s->size_fs > 1024))
         return swell_fail(err, SWELL_E_ARG,
                           "size_fs = %d must be a power of two in [16, 1024] (or 0 = by budget)",

@@ -39,7 +39,7 @@ struct seastate {
     int   patterns;         /* n wave patterns (Dupuy 2012 §2). default 4. range [1, 4] */
     float loop_period_s;    /* T: every pattern repeats exactly after T seconds (Hu 2006 §2.1).
                                default 16. range [2, 600] */
-    int   frames;           /* F frames per loop. default 0 = chosen by the budget. range [2, 256] */
+    int   frames;           /* F frames per loop. default 0 = chosen by the budget. range [4, 256] */
     int   size_fs;          /* N of the per-pattern slope/whitecap tables (power of two).
                                default 0 = chosen by the budget. range [16, 1024] */
     int   size_geo;         /* N of the per-pattern displacement tables (power of two).

@@ -51,7 +51,7 @@ static void usage(FILE *f)
 "Tables:\n"
 "  --patterns N      wave patterns of different periods (Dupuy 2012 §2) [4]   1..4\n"
 "  --period S        loop period T: every table repeats after T seconds [16]  2..600\n"
-"  --frames F        frames per loop                                   [by budget] 2..256\n"
+"  --frames F        frames per loop                                   [by budget] 4..256\n"
 "  --size N          slope/whitecap table size, power of two           [by budget] 16..1024\n"
 "  --size-geo N      displacement table size, power of two             [by budget] 8..512\n"
 "  --budget B        GPU memory budget: tiny (4 MiB) | default (16 MiB) | bytes (8M, 1G)\n"
@@ -70,6 +70,21 @@ static int opt_value(int argc, char **argv, int *i, const char **val)
         return -1;
     }
     *val = argv[++*i];
+    return 0;
+}
+
+/* Table sizes: checked here so the message names the option, not only the seastate field. */
+static int parse_pow2(const char *opt, const char *v, int lo, int hi, const char *field, int *out,
+                      struct swell_err *err)
+{
+    int n = 0;
+    int r = parse_int(opt, v, lo, hi, &n, err);
+    if (r)
+        return r;
+    if (n & (n - 1))
+        return swell_fail(err, SWELL_E_ARG, "%s: %s is not a power of two (%s: %d, %d, ... %d)",
+                          opt, v, field, lo, 2 * lo, hi);
+    *out = n;
     return 0;
 }
 
@@ -123,9 +138,9 @@ static int parse_args(int argc, char **argv, struct options *o)
         } else if (!strcmp(a, "--foam-half-life")) r = parse_float(a, v, 0.05, 60, "s", &s->foam_half_life_s, &err);
         else if (!strcmp(a, "--patterns")) r = parse_int(a, v, 1, SWELL_MAX_PATTERNS, &s->patterns, &err);
         else if (!strcmp(a, "--period")) r = parse_float(a, v, 2, 600, "s", &s->loop_period_s, &err);
-        else if (!strcmp(a, "--frames")) r = parse_int(a, v, 2, 256, &s->frames, &err);
-        else if (!strcmp(a, "--size")) r = parse_int(a, v, 16, 1024, &s->size_fs, &err);
-        else if (!strcmp(a, "--size-geo")) r = parse_int(a, v, 8, 512, &s->size_geo, &err);
+        else if (!strcmp(a, "--frames")) r = parse_int(a, v, 4, 256, &s->frames, &err);
+        else if (!strcmp(a, "--size")) r = parse_pow2(a, v, 16, 1024, "size_fs", &s->size_fs, &err);
+        else if (!strcmp(a, "--size-geo")) r = parse_pow2(a, v, 8, 512, "size_geo", &s->size_geo, &err);
         else if (!strcmp(a, "--budget")) r = parse_budget(a, v, &s->budget_bytes, &err);
         else if (!strcmp(a, "--out")) o->out_dir = v;
         else if (!strcmp(a, "--report")) o->report = v;

@@ -1,0 +1,352 @@
+#!/bin/sh
+# Bad-input catalogue for both programs (issue 5, "Robustness"). Every case must give a precise
+# message, a non-zero exit (2 for usage errors, 1 for runtime failures) and write nothing:
+#  1. every option of swell-bake and swell with out-of-range, negative, NaN, inf, huge and
+#     malformed values, and without its value;
+#  2. each KTX header field corrupted in turn, seen through `swell-bake inspect` and
+#     `swell --tables`, both as a raw corruption (the manifest's file crc32 catches it) and
+#     resealed (manifest crc32 updated, so the KTX reader itself must catch the field);
+#  3. a bake killed with SIGKILL at random points, fresh and over an older set: whenever
+#     inspect accepts the directory, it is byte-identical to a reference bake;
+#  4. an unwritable output (read-only tmpfs; a parent that is a regular file) and a full one
+#     (a tiny tmpfs): precise message, exit 1, no file the loader accepts, no temp file.
+# Mounting needs root and CAP_SYS_ADMIN; where it is refused the mount cases say why and are
+# skipped, except under CI=true where that is a failure.
+set -u
+BUILD=${SWELL_BUILD:-build/rel}
+B=$BUILD/swell-bake
+S=$BUILD/swell
+# sanitizer builds: tools/run-tests.sh says what swell needs preloaded (Mesa's driver)
+if [ -n "${SWELL_SAN_PRELOAD:-}" ]; then
+    swell() { LD_PRELOAD="$SWELL_SAN_PRELOAD" "$S" "$@"; }
+else
+    swell() { "$S" "$@"; }
+fi
+T=${SWELL_TMP:-/tmp}/bad_input
+mounts=""
+cleanup() {
+    for m in $mounts; do umount "$m" 2>/dev/null; done
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM
+rm -rf "$T"; mkdir -p "$T"
+fails=0; checks=0
+for prog in "$B" "$S"; do
+    if ! [ -x "$prog" ]; then
+        echo "$prog is not built: run \`make test-unit\` (tools/fuzz.mk makes it depend on swell)"
+        exit 1
+    fi
+done
+ok() { checks=$((checks + 1)); echo "ok   $*"; }
+bad() { checks=$((checks + 1)); fails=$((fails + 1)); echo "FAIL $*"; }
+check() { # check NAME COMMAND...
+    name=$1; shift
+    if "$@"; then ok "$name"; else bad "$name"; fi
+}
+no_temp_files() { ! ls -a "$1" 2>/dev/null | grep -q '\.tmp\.'; }
+
+t_section=$(date +%s)
+# ---- 1. option catalogue ----------------------------------------------------------------------
+
+# usage PROGRAM OPTION VALUE [PATTERN]: exit 2, the message names the option (or PATTERN),
+# nothing written. The bad option comes last so it is the one refused.
+usage() {
+    prog=$1; opt=$2; val=$3; pat=${4:-$2}
+    rm -rf "$T/never" "$T/never.png" "$T/never.json"
+    if [ "$prog" = bake ]; then
+        out=$("$B" --out "$T/never" --report "$T/never.json" --quiet "$opt" "$val" 2>&1); rc=$?
+    else
+        # "$S" itself: a usage error exits before EGL, so no driver preload is needed
+        out=$("$S" --platform surfaceless --size 64x64 --frames 1 --out "$T/never.png" \
+              "$opt" "$val" 2>&1); rc=$?
+    fi
+    if [ $rc -eq 2 ] && printf '%s' "$out" | grep -q -- "$pat" && [ ! -e "$T/never" ] &&
+       [ ! -e "$T/never.png" ] && [ ! -e "$T/never.json" ]; then
+        ok "$prog $opt '$val' -> $out"
+    else
+        bad "$prog $opt '$val': exit $rc, wanted 2 and a message naming $pat: $out"
+    fi
+}
+# needs_value PROGRAM OPTION: the option as the last argument, without its value.
+needs_value() {
+    rm -rf "$T/never" "$T/never.png"
+    if [ "$1" = bake ]; then out=$("$B" --out "$T/never" "$2" 2>&1); rc=$?
+    else out=$("$S" --platform surfaceless --out "$T/never.png" "$2" 2>&1); rc=$?; fi
+    if [ $rc -eq 2 ] && printf '%s' "$out" | grep -q -- "$2" && [ ! -e "$T/never" ] &&
+       [ ! -e "$T/never.png" ]; then ok "$1 $2 without a value"
+    else bad "$1 $2 without a value: exit $rc: $out"; fi
+}
+# numbers OPTION PROGRAM VALUES...: each value refused
+values() {
+    prog=$1; opt=$2; shift 2
+    needs_value "$prog" "$opt"
+    for v in "$@"; do usage "$prog" "$opt" "$v"; done
+}
+
+# swell-bake (the ranges are in `swell-bake --help`)
+values bake --wind -5 0 0.49 40.01 nan inf 1e300 abc 5m/s "" " 5" 5,5
+values bake --wind-dir -360.5 361 nan -inf 1e39 deg ""
+values bake --fetch 0 -1 0.09 10001 nan inf 1e300 km ""
+values bake --depth -1 0.5 10001 nan inf 1e300 deep ""
+values bake --spectrum foo "" JONSWAP "jonswap " pm,tma
+values bake --spread 0 -2 100.5 nan inf 1e300 x ""
+values bake --seed -1 0 2147483648 99999999999999999999 1.5 1e3 0x10 abc ""
+values bake --choppiness -0.1 2.1 nan inf 1e300 x ""
+values bake --whitecap-model mom81 "" MOM80 wu
+values bake --foam-half-life 0 -3 0.04 61 nan inf 1e300 x ""
+values bake --patterns 0 -1 5 4294967297 1.5 nan x ""
+values bake --period 0 -16 1.99 601 nan inf 1e300 x ""
+values bake --frames 0 1 2 3 -8 257 4294967298 8.5 nan 0x10 ""
+values bake --size 0 8 -64 17 48 100 2048 4294967312 64.0 nan ""
+values bake --size-geo 0 4 -64 24 1024 4294967304 nan ""
+values bake --budget 0 -1 1X 0.5M 1023 2G 99999999999999999999 nan lots ""
+needs_value bake --preset
+for v in nonexistent ../calm /nonexistent.preset "" "calm rough"; do usage bake --preset "$v" preset; done
+usage bake --bogus 1 "unknown option"
+out=$("$B" --wind 10 2>&1); rc=$?
+check "bake without --out: exit 2 naming --out ($out)" sh -c "[ $rc -eq 2 ] && printf '%s' '$out' | grep -q -- --out"
+out=$("$B" inspect 2>&1); rc=$?
+check "inspect without DIR: exit 2 ($out)" [ $rc -eq 2 ]
+out=$("$B" inspect "$T/a" "$T/b" 2>&1); rc=$?
+check "inspect with two DIRs: exit 2 ($out)" [ $rc -eq 2 ]
+
+# swell (the ranges are in `swell --help`)
+values swell --platform x "" SURFACELESS
+values swell --size 0x90 15x90 160x0 160x16385 -160x90 160x 160 x90 160x90x2 99999999999x90 \
+    nanxnan 1e3x90 160.5x90 ""
+values swell --frames -1 100000001 1e9 1.5 nan abc ""
+values swell --fps 0 -30 0.09 1001 nan inf 1e300 abc ""
+values swell --time nan inf -inf 1e300 -1e300 abc ""
+values swell --duration 0 -1 nan inf 1e300 abc ""
+values swell --out "" "$T/never/x%d%d.png" "$T/never/x%s.png" "$T/never/x%n.png"
+needs_value swell --tables
+needs_value swell --preset
+for v in nonexistent ../calm ""; do usage swell --preset "$v" preset; done
+values swell --wind 0 -5 40.5 nan inf 1e300 abc ""
+values swell --budget 0 -1 1X 2G nan ""
+values swell --sun 0,0 -10,0 91,0 nan,0 30,nan inf,0 30 30,0,1 "" 30,,0 a,b 1e300,0
+values swell --camera 0,0,0 0,0,-1 0,0,50001 nan,0,10 0,inf,10 1,2 1,2,3,4 1e39,0,10 "" a,b,c
+values swell --heading -361 361 nan inf 1e300 x ""
+values swell --pitch -90 90 nan inf 1e300 x ""
+values swell --path 5km "" SURFACE
+values swell --quality ultra "" LOW
+values swell --geometry mesh "" GRID
+values swell --tier gles4 "" GLES3 gles2
+values swell --mode 0x0 15x480 640x480@0 640x480@1001 640x480@nan 640x480@ abc ""
+values swell --kms-api modern "" ATOMIC
+needs_value swell --device
+needs_value swell --connector
+usage swell --bogus 1 "unknown option"
+out=$("$S" --platform surfaceless --frames 3 --out "$T/never.png" 2>&1); rc=$?
+check "swell: several frames into one file is a usage error ($out)" \
+    sh -c "[ $rc -eq 2 ] && ! [ -e '$T/never.png' ] && printf '%s' '$out' | grep -q -- --out"
+
+echo "section took $(($(date +%s) - t_section)) s"; t_section=$(date +%s)
+# ---- 2. each table header field corrupted in turn -----------------------------------------------
+
+"$B" --size 16 --size-geo 8 --frames 4 --patterns 1 --out "$T/good" --quiet ||
+    bad "small reference bake"
+out=$(swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" \
+      --out "$T/good.png" 2>&1); rc=$?
+check "swell accepts the uncorrupted set (exit $rc)" sh -c "[ $rc -eq 0 ] && [ -s '$T/good.png' ]"
+crc_of() { gzip -c "$1" | tail -c 8 | head -c 4 | od -An -tu4 | tr -d ' '; }
+# reseal DIR FILE: make the manifest's size and crc32 agree with the (corrupted) file again
+reseal() {
+    stem=$(basename "$2" .ktx)
+    i=$(sed -n "s/^table\.\([0-9]*\)\.name = $stem\$/\1/p" "$1/manifest.swell")
+    sed -i "s/^table\.$i\.file_crc32 = .*/table.$i.file_crc32 = $(crc_of "$2")/;
+            s/^table\.$i\.file_bytes = .*/table.$i.file_bytes = $(wc -c < "$2" | tr -d ' ')/" \
+        "$1/manifest.swell"
+}
+# refused DIR FILE WHAT: inspect and swell --tables both exit 1 naming FILE; no PNG written
+refused() {
+    out=$("$B" inspect "$1" 2>&1); rc=$?
+    if [ $rc -eq 1 ] && printf '%s' "$out" | grep -q "$2"; then ok "inspect refuses $3"
+    else bad "inspect $3: exit $rc, wanted 1 naming $2: $(printf '%s' "$out" | tail -n 1)"; fi
+    rm -f "$T/never.png"
+    out=$("$S" --platform surfaceless --size 64x64 --frames 1 --tables "$1" \
+          --out "$T/never.png" 2>&1); rc=$?
+    if [ $rc -eq 1 ] && printf '%s' "$out" | grep -q "$2" && [ ! -e "$T/never.png" ]; then
+        ok "swell --tables refuses $3: $(printf '%s' "$out" | tail -n 1)"
+    else bad "swell --tables $3: exit $rc, wanted 1 naming $2: $(printf '%s' "$out" | tail -n 1)"; fi
+}
+# put_u32 FILE OFFSET VALUE: little-endian
+put_u32() {
+    v=$3
+    printf "$(printf '\\%03o\\%03o\\%03o\\%03o' $((v & 255)) $(((v >> 8) & 255)) \
+        $(((v >> 16) & 255)) $(((v >> 24) & 255)))" |
+        dd of="$1" bs=1 seek="$2" conv=notrunc 2>/dev/null
+}
+get_u32() { od -An -tu4 -j "$2" -N 4 "$1" | tr -d ' '; }
+n=0
+for field in endianness glType glTypeSize glFormat glInternalFormat glBaseInternalFormat \
+             pixelWidth pixelHeight pixelDepth numberOfArrayElements numberOfFaces \
+             numberOfMipmapLevels bytesOfKeyValueData; do
+    offset=$((12 + 4 * n)); n=$((n + 1))
+    for how in raw resealed; do
+        d="$T/hdr_${field}_$how"
+        cp -r "$T/good" "$d"
+        f="$d/slope_p0.ktx"
+        old=$(get_u32 "$f" $offset)
+        put_u32 "$f" $offset $(((old + 1) & 4294967295))
+        [ $how = resealed ] && reseal "$d" "$f"
+        refused "$d" slope_p0.ktx "slope_p0.ktx $field $old -> $((old + 1)) ($how)"
+    done
+done
+d="$T/hdr_identifier"; cp -r "$T/good" "$d"
+printf 'KTX 20' | dd of="$d/disp_p0.ktx" bs=1 seek=1 conv=notrunc 2>/dev/null
+reseal "$d" "$d/disp_p0.ktx"
+refused "$d" disp_p0.ktx "disp_p0.ktx identifier (resealed)"
+d="$T/hdr_kv"; cp -r "$T/good" "$d"
+sed -i 's/swell\.kind/swell.kinD/' "$d/whitecap_p0.ktx"; reseal "$d" "$d/whitecap_p0.ktx"
+refused "$d" whitecap_p0.ktx "whitecap_p0.ktx key swell.kind renamed (resealed)"
+d="$T/hdr_texel"; cp -r "$T/good" "$d"
+size=$(wc -c < "$d/fresnel.ktx")
+# complement the byte, so it changes whatever it was
+byte=$(od -An -tu1 -j $((size - 9)) -N 1 "$d/fresnel.ktx" | tr -d ' ')
+printf "$(printf '\\%03o' $((255 - byte)))" |
+    dd of="$d/fresnel.ktx" bs=1 seek=$((size - 9)) conv=notrunc 2>/dev/null
+reseal "$d" "$d/fresnel.ktx"
+refused "$d" fresnel.ktx "fresnel.ktx texel changed (resealed: the image crc32 catches it)"
+d="$T/hdr_truncated"; cp -r "$T/good" "$d"
+head -c 100 "$T/good/fresnel_eff.ktx" > "$d/fresnel_eff.ktx"; reseal "$d" "$d/fresnel_eff.ktx"
+refused "$d" fresnel_eff.ktx "fresnel_eff.ktx truncated (resealed)"
+d="$T/manifest_truncated"; cp -r "$T/good" "$d"
+head -c 1000 "$T/good/manifest.swell" > "$d/manifest.swell"
+refused "$d" manifest.swell "manifest.swell truncated"
+d="$T/manifest_missing"; cp -r "$T/good" "$d"; rm "$d/manifest.swell"
+refused "$d" manifest "a set without its manifest"
+d="$T/unlisted"; cp -r "$T/good" "$d"; cp "$d/disp_p0.ktx" "$d/disp_p1.ktx"
+refused "$d" disp_p1.ktx "an unlisted disp_p1.ktx"
+
+echo "section took $(($(date +%s) - t_section)) s"; t_section=$(date +%s)
+# ---- 3. a bake killed with SIGKILL at random points ----------------------------------------------
+
+KILL_RUNS=${KILL_RUNS:-14}
+BAKE="--size 64 --size-geo 32 --frames 8 --patterns 2 --wind 14 --seed 7 --quiet"
+t0=$(date +%s%N)
+# shellcheck disable=SC2086
+"$B" $BAKE --out "$T/ref" || bad "reference bake for the kill test"
+t1=$(date +%s%N)
+ref_ms=$(((t1 - t0) / 1000000))
+[ $ref_ms -lt 10 ] && ref_ms=10
+"$B" --size 64 --size-geo 32 --frames 8 --patterns 2 --wind 5 --quiet --out "$T/old" ||
+    bad "older bake for the kill test"
+# same_set A B: B holds exactly A's files (temp files aside), byte for byte
+same_set() {
+    for f in "$1"/*; do cmp -s "$f" "$2/$(basename "$f")" || return 1; done
+    [ "$(ls "$2" | grep -v '\.tmp\.' | wc -l)" -eq "$(ls "$1" | wc -l)" ]
+}
+rand() { od -An -N4 -tu4 /dev/urandom | tr -d ' '; }
+accepted=0; refused_n=0; finished=0
+i=0
+while [ $i -lt $KILL_RUNS ]; do
+    d="$T/kill$i"
+    rm -rf "$d"
+    # odd runs overwrite an older, complete set of other inputs (same file names)
+    [ $((i % 2)) -eq 1 ] && cp -r "$T/old" "$d"
+    # half the runs anywhere in the bake, half in its last 30%, where the files are written
+    if [ $((i % 4)) -lt 2 ]; then delay=$(($(rand) % (ref_ms + 1)))
+    else delay=$((ref_ms * 7 / 10 + $(rand) % (ref_ms * 4 / 10 + 1))); fi
+    # shellcheck disable=SC2086
+    "$B" $BAKE --out "$d" & pid=$!
+    sleep "$(printf '%d.%03d' $((delay / 1000)) $((delay % 1000)))"
+    kill -KILL $pid 2>/dev/null
+    wait $pid 2>/dev/null; rc=$?
+    [ $rc -eq 0 ] && finished=$((finished + 1))
+    out=$("$B" inspect "$d" 2>&1); irc=$?
+    if [ $irc -eq 0 ]; then
+        accepted=$((accepted + 1))
+        # a kill before the save began leaves the older set untouched: complete, so sound
+        if same_set "$T/ref" "$d"; then
+            ok "kill after ${delay} ms (bake exit $rc): accepted, identical to the reference"
+        elif [ $((i % 2)) -eq 1 ] && same_set "$T/old" "$d"; then
+            ok "kill after ${delay} ms (bake exit $rc): accepted, the older set left intact"
+        else
+            bad "kill after ${delay} ms (bake exit $rc): inspect accepted a set that is neither the reference nor the older set"
+        fi
+    elif [ $irc -eq 1 ]; then
+        refused_n=$((refused_n + 1))
+        ok "kill after ${delay} ms (bake exit $rc): refused: $(printf '%s' "$out" | tail -n 1 | cut -c 1-150)"
+    else
+        bad "kill after ${delay} ms: inspect exit $irc: $out"
+    fi
+    i=$((i + 1))
+done
+echo "kill test: reference bake ${ref_ms} ms; $KILL_RUNS kills: $accepted accepted (all identical" \
+     "or failed above), $refused_n refused, $finished bakes finished before the kill"
+
+echo "section took $(($(date +%s) - t_section)) s"; t_section=$(date +%s)
+# ---- 4. unwritable and full output directories ----------------------------------------------------
+
+SMALL="--size 16 --size-geo 8 --frames 4 --patterns 1 --quiet"
+# nothing_loadable DIR: no manifest, no set inspect accepts, no temp file
+nothing_loadable() {
+    ! [ -e "$1/manifest.swell" ] && ! "$B" inspect "$1" >/dev/null 2>&1 && no_temp_files "$1"
+}
+# runtime_error NAME PATTERN COMMAND...: exit 1 and a message matching PATTERN
+runtime_error() {
+    name=$1; pat=$2; shift 2
+    out=$("$@" 2>&1); rc=$?
+    if [ $rc -eq 1 ] && printf '%s' "$out" | grep -q -- "$pat"; then ok "$name: $(printf '%s' "$out" | tail -n 1)"
+    else bad "$name: exit $rc, wanted 1 and '$pat': $out"; fi
+}
+
+: > "$T/afile"
+# shellcheck disable=SC2086
+runtime_error "bake into a path under a regular file" "afile" \
+    "$B" $SMALL --out "$T/afile/tables"
+check "  ... and the file is untouched" [ ! -s "$T/afile" ]
+runtime_error "swell PNG into a path under a regular file" "afile" \
+    swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" --out "$T/afile/x.png"
+check "  ... and the file is untouched" [ ! -s "$T/afile" ]
+
+mount_ok=1
+mkdir -p "$T/ro" "$T/full"
+if ! why=$(mount -t tmpfs -o ro,size=64k tmpfs "$T/ro" 2>&1); then
+    mount_ok=0
+else
+    mounts="$T/ro"
+    if ! why=$(mount -t tmpfs -o size=64k tmpfs "$T/full" 2>&1); then mount_ok=0
+    else mounts="$mounts $T/full"; fi
+fi
+if [ $mount_ok -eq 0 ]; then
+    echo "cannot mount a tmpfs here (needs root and CAP_SYS_ADMIN): $why"
+    if [ "${CI:-}" = true ]; then bad "mount needed for the read-only/full directory cases"
+    else echo "SKIP read-only and full output directory cases (not under CI=true)"; fi
+else
+    # shellcheck disable=SC2086
+    runtime_error "bake into a read-only file system" "Read-only file system" \
+        "$B" $SMALL --out "$T/ro/tables"
+    check "  ... nothing created" [ -z "$(ls -A "$T/ro")" ]
+    runtime_error "swell PNG into a read-only file system" "Read-only file system" \
+        swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" --out "$T/ro/x.png"
+    check "  ... nothing created" [ -z "$(ls -A "$T/ro")" ]
+    # shellcheck disable=SC2086
+    runtime_error "bake report into a read-only file system" "Read-only file system" \
+        "$B" $SMALL --out "$T/ro_report_tables" --report "$T/ro/r.json"
+    check "  ... no report created" [ -z "$(ls -A "$T/ro")" ]
+
+    # full: the small set is ~48 KiB of tables, a 64 KiB tmpfs holds part of a bigger one
+    # shellcheck disable=SC2086
+    runtime_error "bake into a full file system" "No space left on device" \
+        "$B" --size 64 --size-geo 32 --frames 8 --patterns 2 --quiet --out "$T/full/tables"
+    check "  ... nothing loadable, no temp file" nothing_loadable "$T/full/tables"
+    rm -rf "$T/full/tables"
+    # over an older complete set that fits: the failed bake must not leave the old manifest
+    # pointing at a mix of old and new files
+    # shellcheck disable=SC2086
+    "$B" $SMALL --out "$T/full/tables" || bad "small bake into the 64 KiB tmpfs"
+    "$B" inspect "$T/full/tables" >/dev/null 2>&1 || bad "the small set in the tmpfs is sound"
+    runtime_error "re-bake a bigger set over it" "No space left on device" \
+        "$B" --size 32 --size-geo 16 --frames 8 --patterns 2 --quiet --out "$T/full/tables"
+    check "  ... nothing loadable, no temp file" nothing_loadable "$T/full/tables"
+    rm -rf "$T/full/tables"
+    dd if=/dev/zero of="$T/full/filler" bs=4096 2>/dev/null
+    runtime_error "swell PNG into a full file system" "No space left on device" \
+        swell --platform surfaceless --size 256x256 --frames 1 --tables "$T/good" --out "$T/full/x.png"
+    check "  ... no PNG, no temp file" sh -c "! [ -e '$T/full/x.png' ] && ! ls -a '$T/full' | grep -q tmp"
+fi
+
+echo "$checks checks, $fails failed"
+[ $fails -eq 0 ]
