@@ -1,5 +1,7 @@
 #include "fsutil.h"
 
+#include <zlib.h>
+
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -203,4 +205,17 @@ fail:
     free(buf);
     close(fd);
     return rc;
+}
+
+uint32_t fs_crc32(const void *data, size_t n)
+{
+    const uint8_t *p = data;
+    uLong c = crc32(0L, Z_NULL, 0);
+    while (n > 0) {
+        uInt chunk = n > 0x40000000u ? 0x40000000u : (uInt)n;
+        c = crc32(c, p, chunk);
+        p += chunk;
+        n -= chunk;
+    }
+    return (uint32_t)c;
 }

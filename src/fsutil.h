@@ -31,4 +31,7 @@ int fs_read_file(const char *path, size_t max_bytes, uint8_t **out, size_t *out_
 /* "dir/name" into buf; SWELL_E_ARG when it does not fit. */
 int fs_join(char *buf, size_t cap, const char *dir, const char *name, struct swell_err *err);
 
+/* zlib CRC-32 of n bytes (any length: zlib takes uInt, so large buffers go in pieces). */
+uint32_t fs_crc32(const void *data, size_t n);
+
 #endif

@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <zlib.h>
 
 #include "fsutil.h"
 
@@ -65,30 +64,6 @@ static int full_chain(uint32_t w, uint32_t h)
     return n;
 }
 
-static uint32_t image_crc(const uint8_t *data, size_t n)
-{
-    uLong c = crc32(0L, Z_NULL, 0);
-    /* zlib's length is uInt; feed large images in pieces. */
-    while (n > 0) {
-        uInt chunk = n > 0x40000000u ? 0x40000000u : (uInt)n;
-        c = crc32(c, data, chunk);
-        data += chunk;
-        n -= chunk;
-    }
-    return (uint32_t)c;
-}
-
-static int valid_name(const char *s)
-{
-    size_t n = strlen(s);
-    if (n == 0 || n > 31)
-        return 0;
-    for (size_t i = 0; i < n; i++)
-        if (!((s[i] >= 'a' && s[i] <= 'z') || (s[i] >= '0' && s[i] <= '9') || s[i] == '_'))
-            return 0;
-    return 1;
-}
-
 /* ---- writer --------------------------------------------------------------------------- */
 
 #define KV_KEYS 8
@@ -111,7 +86,7 @@ int ktx_write_memory(const struct swell_table *t, uint8_t **out, size_t *out_len
     *out_len = 0;
     if (t->format < 0 || t->format >= FORMAT_COUNT)
         return swell_fail(err, SWELL_E_ARG, "table %s: unknown format %d", t->name, t->format);
-    if (!valid_name(t->name) || t->kind < 0 || t->kind >= TABLE_KIND_COUNT ||
+    if (!table_name_valid(t->name) || t->kind < 0 || t->kind >= TABLE_KIND_COUNT ||
         t->pattern < -1 || t->pattern >= SWELL_MAX_PATTERNS)
         return swell_fail(err, SWELL_E_ARG, "table '%s': invalid name, kind %d or pattern %d",
                           t->name, t->kind, t->pattern);
@@ -139,7 +114,7 @@ int ktx_write_memory(const struct swell_table *t, uint8_t **out, size_t *out_len
         {"swell.version", ""},
     };
     fmt4(kv[1].value, sizeof kv[1].value, t->bias);
-    snprintf(kv[2].value, sizeof kv[2].value, "0x%08x", image_crc(t->data, data_bytes));
+    snprintf(kv[2].value, sizeof kv[2].value, "0x%08x", fs_crc32(t->data, data_bytes));
     snprintf(kv[3].value, sizeof kv[3].value, "%s", table_kind_name(t->kind));
     snprintf(kv[4].value, sizeof kv[4].value, "%s", t->name);
     snprintf(kv[5].value, sizeof kv[5].value, "%d", t->pattern);
@@ -308,7 +283,7 @@ static int check_meta(const struct found *f, const char *name, struct swell_tabl
     if (f->value[0] && strcmp(f->value[0], "S=r,T=u") != 0)
         return swell_fail(err, SWELL_E_FORMAT, "%s: KTXorientation: '%.32s', expected "
                           "'S=r,T=u'", name, f->value[0]);
-    if (!valid_name(f->value[4]))
+    if (!table_name_valid(f->value[4]))
         return swell_fail(err, SWELL_E_FORMAT, "%s: swell.name: '%.40s' is not 1..31 chars of "
                           "[a-z0-9_]", name, f->value[4]);
     snprintf(t->name, sizeof t->name, "%s", f->value[4]);
@@ -481,7 +456,7 @@ int ktx_read_memory(const void *buf, size_t len, const char *name_for_errors,
             }
         off += 4 + pad4(m);
     }
-    uint32_t crc = image_crc(t.data, n);
+    uint32_t crc = fs_crc32(t.data, n);
     if (crc != crc_want) {
         free(t.data);
         return swell_fail(err, SWELL_E_CHECKSUM, "%s: swell.crc32: image data has crc32 "

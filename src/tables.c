@@ -2,6 +2,7 @@
 
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 static const char *const kind_names[TABLE_KIND_COUNT] = {
     [TABLE_DISP] = "disp",
@@ -157,4 +158,12 @@ float tables_pattern_period(const struct swell_tables *s, int pattern)
 {
     float p = pattern >= 0 && pattern < SWELL_MAX_PATTERNS ? s->pattern[pattern].period_s : 0.0f;
     return p > 0.0f ? p : s->loop_period_s;
+}
+
+int table_name_valid(const char *name)
+{
+    size_t n = strnlen(name, 32);
+    if (n == 0 || n > 31)
+        return 0;
+    return strspn(name, "abcdefghijklmnopqrstuvwxyz0123456789_") == n;
 }

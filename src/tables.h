@@ -94,6 +94,9 @@ size_t table_offset(const struct swell_table *t, int level, int layer);
 int table_level_width(const struct swell_table *t, int level);   /* max(1, width >> level) */
 int table_level_height(const struct swell_table *t, int level);
 
+/* 1 when name is 1-31 characters of [a-z0-9_] (table names become file names: no paths). */
+int table_name_valid(const char *name);
+
 /* Allocate t->data for the geometry already set in t (zeroed). */
 int table_alloc(struct swell_table *t, struct swell_err *err);
 

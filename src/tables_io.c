@@ -7,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <zlib.h>
 
 #include "fsutil.h"
 #include "ktx.h"
@@ -16,26 +15,6 @@
 
 #define KTX_SUFFIX ".ktx"
 #define MANIFEST_BUF_BYTES (64u * 1024u)
-
-static uint32_t file_crc(const uint8_t *p, size_t n)
-{
-    uLong c = crc32(0L, Z_NULL, 0);
-    while (n > 0) {
-        uInt chunk = n > 0x40000000u ? 0x40000000u : (uInt)n;
-        c = crc32(c, p, chunk);
-        p += chunk;
-        n -= chunk;
-    }
-    return (uint32_t)c;
-}
-
-static int valid_name(const char *s)
-{
-    size_t n = strnlen(s, 32);
-    if (n == 0 || n > 31)
-        return 0;
-    return strspn(s, "abcdefghijklmnopqrstuvwxyz0123456789_") == n;
-}
 
 static int ends_with(const char *s, const char *suffix)
 {
@@ -145,7 +124,7 @@ static int read_entry(struct kv *kv, int i, struct swell_table *tb,
 #define KEY(field) (snprintf(key, sizeof key, "table.%d." field, i), key)
     if ((rc = kv_get_str(kv, KEY("name"), &str, err)))
         return rc;
-    if (!valid_name(str))
+    if (!table_name_valid(str))
         return swell_fail(err, SWELL_E_FORMAT, "%s:%d: %s: '%s' is not 1..31 chars of "
                           "[a-z0-9_]", kv->source, kv_find(kv, key)->line, key, str);
     snprintf(tb->name, sizeof tb->name, "%s", str);
@@ -271,7 +250,7 @@ static int check_table(const char *dir, const struct tables_manifest_entry *e,
                         "; the set is inconsistent, re-bake it", path, len, e->file_bytes);
         goto done;
     }
-    uint32_t crc = file_crc(buf, len);
+    uint32_t crc = fs_crc32(buf, len);
     if (crc != e->file_crc32) {
         rc = swell_fail(err, SWELL_E_CHECKSUM, "%s: file crc32 is %" PRIu32 ", the manifest "
                         "says %" PRIu32 "; the file is corrupt or from another bake, re-bake "
@@ -490,7 +469,7 @@ int tables_save_dir(const struct swell_tables *t, const char *dir, struct swell_
         return swell_fail(err, SWELL_E_ARG, "table set has %d tables, expected 0..%d",
                           t->count, SWELL_MAX_TABLES);
     for (int i = 0; i < t->count; i++) {
-        if (!valid_name(t->table[i].name))
+        if (!table_name_valid(t->table[i].name))
             return swell_fail(err, SWELL_E_ARG, "table %d: name '%.32s' is not 1..31 chars of "
                               "[a-z0-9_]", i, t->table[i].name);
         for (int j = 0; j < i; j++)
@@ -521,7 +500,7 @@ int tables_save_dir(const struct swell_tables *t, const char *dir, struct swell_
             goto done;
         snprintf(m->entry[i].name, sizeof m->entry[i].name, "%s", tb->name);
         m->entry[i].file_bytes = len;
-        m->entry[i].file_crc32 = file_crc(buf, len);
+        m->entry[i].file_crc32 = fs_crc32(buf, len);
         rc = fs_join(path, sizeof path, dir, file, err);
         if (rc == 0)
             rc = fs_write_atomic(path, buf, len, err);
