@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 
 #include "bake.h"
@@ -214,11 +215,17 @@ static int parse_args(int argc, char **argv, struct options *o)
             r = parse_double(a, v, 0.001, 1e7, "s", &o->duration_s, &err);
         } else if (!strcmp(a, "--out")) {
             o->out = v;
+            size_t len = strlen(v);
             if (!v[0] || out_conversions(v) < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--out: '%s' is not a file name or a pattern "
                                "with one %%d conversion (e.g. out/frame%%04d.png)", v);
+            else if (len < 4 || strcasecmp(v + len - 4, ".png") != 0)
+                r = swell_fail(&err, SWELL_E_ARG, "--out: '%s' does not end in .png (frames are "
+                               "written as PNG only)", v);
         } else if (!strcmp(a, "--tables")) {
             o->tables_dir = v;
+            if (!v[0])
+                r = swell_fail(&err, SWELL_E_ARG, "--tables: empty directory name");
         } else if (!strcmp(a, "--preset")) {
             o->baking = 1;
             r = preset_load(v, &o->state, &err);
@@ -264,8 +271,12 @@ static int parse_args(int argc, char **argv, struct options *o)
                                "gles3", v);
         } else if (!strcmp(a, "--device")) {
             o->platform.device = v;
+            if (!v[0])
+                r = swell_fail(&err, SWELL_E_ARG, "--device: empty path (e.g. /dev/dri/card0)");
         } else if (!strcmp(a, "--connector")) {
             o->platform.connector = v;
+            if (!v[0])
+                r = swell_fail(&err, SWELL_E_ARG, "--connector: empty name (e.g. HDMI-A-1)");
         } else if (!strcmp(a, "--mode")) {
             r = parse_mode(a, v, &o->platform, &err);
         } else if (!strcmp(a, "--warmup")) {

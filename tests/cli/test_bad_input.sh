@@ -118,7 +118,11 @@ values swell --frames -1 100000001 1e9 1.5 nan abc ""
 values swell --fps 0 -30 0.09 1001 nan inf 1e300 abc ""
 values swell --time nan inf -inf 1e300 -1e300 abc ""
 values swell --duration 0 -1 nan inf 1e300 abc ""
-values swell --out "" "$T/never/x%d%d.png" "$T/never/x%s.png" "$T/never/x%n.png"
+values swell --out "" "$T/never/x%d%d.png" "$T/never/x%s.png" "$T/never/x%n.png" \
+    "$T/never/x.jpg" "$T/never/x"
+values swell --tables ""
+values swell --device ""
+values swell --connector ""
 needs_value swell --tables
 needs_value swell --preset
 for v in nonexistent ../calm ""; do usage swell --preset "$v" preset; done
