@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "bake.h"
@@ -88,6 +89,34 @@ static int parse_pow2(const char *opt, const char *v, int lo, int hi, const char
     return 0;
 }
 
+/* The report's folder must exist before a bake starts, so a typo never fails after the
+ * tables were written. 1 (with a message) when it does not. */
+static int report_dir_missing(const char *path)
+{
+    char dir[4096];
+    struct stat st;
+    const char *slash = strrchr(path, '/');
+    if (!path[0]) {
+        fprintf(stderr, "swell-bake: --report: empty file name\n");
+        return 1;
+    }
+    if (!slash)
+        return 0;
+    size_t n = slash == path ? 1 : (size_t)(slash - path);
+    if (n >= sizeof dir) {
+        fprintf(stderr, "swell-bake: --report: path too long\n");
+        return 1;
+    }
+    memcpy(dir, path, n);
+    dir[n] = '\0';
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "swell-bake: --report: folder '%s' does not exist (create it first)\n",
+                dir);
+        return 1;
+    }
+    return 0;
+}
+
 static int parse_args(int argc, char **argv, struct options *o)
 {
     struct swell_err err = { 0 };
@@ -157,6 +186,8 @@ static int parse_args(int argc, char **argv, struct options *o)
         fprintf(stderr, "swell-bake: --out DIR is required (see --help)\n");
         return 2;
     }
+    if (o->report && report_dir_missing(o->report))
+        return 2;
     return 0;
 }
 

@@ -47,6 +47,8 @@ out=$("$B" --out "$T/never" --wind 2>&1); rc=$?
 check "option without value: $out" sh -c "[ $rc -eq 2 ] && ! [ -e '$T/never' ] && printf '%s' '$out' | grep -q 'needs a value'"
 out=$("$B" --wind 10 2>&1); rc=$?
 check "missing --out is a usage error" sh -c "[ $rc -eq 2 ] && printf '%s' '$out' | grep -q -- --out"
+out=$("$B" --size 32 --frames 8 --out "$T/norep" --report "$T/missing/r.json" 2>&1); rc=$?
+check "report into a missing folder refused before baking (rc $rc)" sh -c "[ $rc -eq 2 ] && ! [ -e '$T/norep' ] && printf '%s' '$out' | grep -q -- --report"
 out=$("$B" --budget 1M --size 256 --frames 64 --out "$T/over" 2>&1); rc=$?
 check "over budget refused (rc $rc: $out)" sh -c "[ $rc -eq 1 ] && ! [ -e '$T/over/manifest.swell' ]"
 
