@@ -284,6 +284,18 @@ static int create_buffers(struct renderer *r, struct swell_err *err)
     return gpu_check("renderer: buffer upload", err);
 }
 
+/* Automatic exposure: the sky's mean radiance E_sky / pi maps to x = 0.5, Reinhard 0.33 before
+ * gamma (0.58 after), which leaves headroom for the brighter horizon and the glint. */
+static void update_exposure(struct renderer *r)
+{
+    if (r->d.exposure > 0.0f) {
+        r->exposure = r->d.exposure;
+    } else {
+        float e = 0.2f * r->sky.sky_irr[0] + 0.7f * r->sky.sky_irr[1] + 0.1f * r->sky.sky_irr[2];
+        r->exposure = 0.5f * (float)M_PI / (e > 1e-4f ? e : 1e-4f);
+    }
+}
+
 int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
 {
     struct renderer *r;
@@ -313,20 +325,37 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)))
         goto fail;
     r->gpu_bytes = r->gpu->bytes - before;
-    /* Automatic exposure: the sky's mean radiance E_sky / pi maps to x = 0.5, Reinhard 0.33
-     * before gamma (0.58 after), which leaves headroom for the brighter horizon and the glint. */
-    if (r->d.exposure > 0.0f) {
-        r->exposure = r->d.exposure;
-    } else {
-        float e = 0.2f * r->sky.sky_irr[0] + 0.7f * r->sky.sky_irr[1] + 0.1f * r->sky.sky_irr[2];
-        r->exposure = 0.5f * (float)M_PI / (e > 1e-4f ? e : 1e-4f);
-    }
+    update_exposure(r);
     *out = r;
     return 0;
 fail:
     swell_err_context(err, "renderer_create");
     renderer_destroy(r);
     return rc;
+}
+
+int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err)
+{
+    struct sky fresh;
+    if (!(elev_deg > 0.0f && elev_deg <= 90.0f) || !isfinite(azim_deg))
+        return swell_fail(err, SWELL_E_ARG, "renderer_set_sun: elevation %g deg must be in (0, "
+                          "90] and azimuth %g deg finite", (double)elev_deg, (double)azim_deg);
+    /* bake first: a failure leaves the current sky in place */
+    int rc = sky_bake(elev_deg, azim_deg, SKY_MAP_SIZE, &fresh, err);
+    if (rc)
+        return rc;
+    rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, fresh.levels, fresh.data,
+                      "renderer: sky upload", err);
+    if (rc) {
+        sky_destroy(&fresh);
+        return rc;
+    }
+    sky_destroy(&r->sky);
+    r->sky = fresh;
+    r->d.sun_elev_deg = elev_deg;
+    r->d.sun_azim_deg = azim_deg;
+    update_exposure(r);
+    return 0;
 }
 
 static void stream_textures(struct renderer *r, double t_s)

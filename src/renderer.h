@@ -40,6 +40,9 @@ int  renderer_create(const struct renderer_desc *d, struct renderer **out, struc
 /* Draw one frame at time t_s (s) into the framebuffer bound now, viewport width x height. */
 int  renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
                     int height, struct swell_err *err);
+/* Move the sun (degrees above the horizon in (0, 90], azimuth CCW from +x): re-bakes the sky
+ * map (about 11 M instructions at 256^2) and the automatic exposure; not for every frame. */
+int  renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err);
 void renderer_get_stats(const struct renderer *r, struct renderer_stats *out);
 /* One line per choice made (tier, geometry path, texture path, shading) into buf. */
 void renderer_describe(const struct renderer *r, char *buf, size_t size);

@@ -391,6 +391,8 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
     double step = 1.0 / (o->fps > 0 ? o->fps : DEFAULT_FPS);
     double start = now_s(), prev = start;
     struct camera live = o->camera;     /* moved by the keyboard when no --path is given */
+    /* 0 means the renderer's default elevation (renderer.h) */
+    float sun = o->sun_elev_deg > 0.0f ? o->sun_elev_deg : 30.0f;
     int shots = 0;
     int rc = SWELL_OK;
     for (int i = 0; frames == 0 || i < frames; i++) {
@@ -404,7 +406,15 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (keys.quit)
             break;
         input_camera_step(&keys, now - prev, &live);
+        int sun_keys = input_held(&keys, INPUT_HOLD_SUN_UP) ||
+                       input_held(&keys, INPUT_HOLD_SUN_DOWN);
+        float sun_now = sun_keys ? input_sun_step(&keys, now - prev, sun) : sun;
         prev = now;
+        if (sun_now != sun) {
+            sun = sun_now;
+            if ((rc = renderer_set_sun(r, sun, o->sun_azim_deg, err)))
+                break;
+        }
         if (keys.preset != INPUT_PRESET_NONE)
             printf("swell: preset %s requested: restart with --preset %s (tables are not "
                    "re-baked while running)\n", input_preset_name(keys.preset),

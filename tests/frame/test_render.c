@@ -121,6 +121,7 @@ static void make_tables(struct swell_tables *s)
 
 /* Render one frame at a tier into rgba (top row first). */
 static float g_exposure;   /* 0 = automatic */
+static float g_move_sun[2];  /* when [0] > 0: renderer_set_sun(elev, azim) after creation */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
                    const struct camera *cam, double t, uint8_t *rgba, double *ms)
@@ -142,6 +143,8 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     rc = renderer_create(&d, &r, &err);
     if (rc)
         fail_msg("renderer_create: %s", err.msg);
+    if (g_move_sun[0] > 0.0f && (rc = renderer_set_sun(r, g_move_sun[0], g_move_sun[1], &err)))
+        fail_msg("renderer_set_sun: %s", err.msg);
     assert_int_equal(fx.ph.be->begin_frame(fx.ph.p, &err), 0);
     struct timespec a, b;
     clock_gettime(CLOCK_MONOTONIC, &a);
@@ -352,6 +355,35 @@ static void test_loop(void **state)
     assert_true(memcmp(fx.img, fx.img2, (size_t)W * H * 4) != 0);
 }
 
+/* Moving the sun on a live renderer (the keyboard's sun keys) gives exactly the frame of a
+ * renderer created with that sun; out-of-range values are refused. */
+static void test_set_sun(void **state)
+{
+    struct camera c;
+    (void)state;
+    surface_camera(&c);
+    render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 8.0f, 40.0f, &c, 1.0, fx.img, NULL);
+    g_move_sun[0] = 8.0f;
+    g_move_sun[1] = 40.0f;
+    render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 1.0, fx.img2, NULL);
+    g_move_sun[0] = 0.0f;
+    assert_memory_equal(fx.img, fx.img2, (size_t)W * H * 4);
+    render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 1.0, fx.img2, NULL);
+    assert_true(memcmp(fx.img, fx.img2, (size_t)W * H * 4) != 0);
+
+    struct gpu gpu;
+    struct renderer *r = NULL;
+    struct swell_err err = { 0 };
+    struct renderer_desc d = { .tables = &fx.tables, .gpu = &gpu };
+    assert_int_equal(gpu_init(&gpu, TIER_GLES2_MIN, 0, &err), 0);
+    assert_int_equal(renderer_create(&d, &r, &err), 0);
+    assert_int_equal(renderer_set_sun(r, 0.0f, 0.0f, &err), SWELL_E_ARG);
+    assert_int_equal(renderer_set_sun(r, 91.0f, 0.0f, &err), SWELL_E_ARG);
+    assert_int_equal(renderer_set_sun(r, 30.0f, NAN, &err), SWELL_E_ARG);
+    renderer_destroy(r);
+    gpu_shutdown(&gpu);
+}
+
 /* gles2-min (3 patterns in the fragment shader, the largest per vertex) against the best tier
  * the context offers (all patterns in the fragment shader): RMSE below 6 of 255. */
 static void test_tiers(void **state)
@@ -404,6 +436,7 @@ int main(void)
         cmocka_unit_test(test_glint),
         cmocka_unit_test(test_loop),
         cmocka_unit_test(test_tiers),
+        cmocka_unit_test(test_set_sun),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     free(fx.img);
