@@ -220,7 +220,8 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
         return swell_err_context(err, "pattern %d (L = %.2f m)", index, pi->size_m);
     w->slope = calloc(chain, sizeof(float));
     w->white = calloc(chain, sizeof(float));
-    w->disp = calloc(texels * 4 * (size_t)F, sizeof(float));
+    /* displacement: level 0 per frame now, box-filtered down to the geometry size later */
+    w->disp = calloc(quantize_chain_floats(n, n, F, ilog2(n / s->size_geo) + 1), sizeof(float));
     w->lmin = calloc(texels * (size_t)F, sizeof(float));
     w->lmin_sorted = calloc(texels * (size_t)F, sizeof(float));
     if (!w->slope || !w->white || !w->disp || !w->lmin || !w->lmin_sorted)
@@ -429,18 +430,11 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
         if ((r = add_table(out, name, TABLE_WHITECAP, i, n, n, F, levels, work[i].white, err)))
             goto fail;
         /* displacement: the box-filtered level of the fine grid at the geometry size */
-        size_t gchain = quantize_chain_floats(n, n, F, geo_level + 1);
-        float *g = realloc(work[i].slope, gchain * sizeof(float));
-        if (!g) {
-            r = swell_fail(err, SWELL_E_NOMEM, "cannot allocate displacement mips");
-            goto fail;
-        }
-        work[i].slope = g;
-        memcpy(g, work[i].disp, texels * 4 * (size_t)F * sizeof(float));
-        quantize_build_mips(g, n, n, F, geo_level + 1);
+        quantize_build_mips(work[i].disp, n, n, F, geo_level + 1);
         size_t off = quantize_chain_floats(n, n, F, geo_level);
         snprintf(name, sizeof name, "disp_p%d", i);
-        if ((r = add_table(out, name, TABLE_DISP, i, s.size_geo, s.size_geo, F, 1, g + off, err)))
+        if ((r = add_table(out, name, TABLE_DISP, i, s.size_geo, s.size_geo, F, 1,
+                           work[i].disp + off, err)))
             goto fail;
         pattern_work_free(&work[i]);
     }
