@@ -366,7 +366,7 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
                           "rendered (e.g. out/frame%%04d.png)", o->out,
                           frames ? "several" : "unlimited");
     uint8_t *rgba = NULL;
-    if (o->out) {
+    if (o->out || is_kms) {   /* KMS: screenshots on a key press; never allocate per frame */
         rgba = malloc((size_t)w * (size_t)h * 4);
         if (!rgba)
             return swell_fail(err, SWELL_E_NOMEM, "no memory for a %dx%d read-back", w, h);
@@ -438,17 +438,12 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         }
         if (!rc && keys.screenshot) {
             char path[64];
-            size_t bytes = (size_t)w * (size_t)h * 4;
-            uint8_t *shot = rgba ? rgba : malloc(bytes);
             snprintf(path, sizeof path, "swell-shot-%04d.png", shots++);
-            rc = shot ? ph->be->read_rgba(ph->p, shot, err)
-                      : swell_fail(err, SWELL_E_NOMEM, "no memory for a screenshot");
+            rc = ph->be->read_rgba(ph->p, rgba, err);
             if (!rc)
-                rc = image_write_png(path, shot, w, h, err);
+                rc = image_write_png(path, rgba, w, h, err);
             if (!rc)
                 printf("swell: screenshot %s\n", path);
-            if (shot != rgba)
-                free(shot);
         }
         if (rc) {
             swell_err_context(err, "frame %d (t = %.3f s)", i, t);
