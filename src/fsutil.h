@@ -31,6 +31,16 @@ int fs_read_file(const char *path, size_t max_bytes, uint8_t **out, size_t *out_
 /* "dir/name" into buf; SWELL_E_ARG when it does not fit. */
 int fs_join(char *buf, size_t cap, const char *dir, const char *name, struct swell_err *err);
 
+/* A growable byte buffer (PNG encoding, shader assembly): every append keeps a NUL after the
+ * data; when an allocation fails `oom` is set and later appends do nothing, so callers check
+ * once at the end. Free `p` when done. */
+struct membuf {
+    char *p;
+    size_t n, cap;
+    int oom;
+};
+void membuf_add(struct membuf *b, const void *data, size_t n);
+
 /* zlib CRC-32 of n bytes (any length: zlib takes uInt, so large buffers go in pieces). */
 uint32_t fs_crc32(const void *data, size_t n);
 

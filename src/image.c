@@ -12,31 +12,9 @@
 
 /* PNG bytes accumulate in memory, then fs_write_atomic replaces the file in one step
  * (STYLE.md 10): a reader never sees a half-written image. */
-struct membuf {
-    uint8_t *p;
-    size_t n, cap;
-    int oom;
-};
-
 static void mem_write(png_structp png, png_bytep data, size_t len)
 {
-    struct membuf *m = png_get_io_ptr(png);
-    if (m->oom)
-        return;
-    if (m->n + len > m->cap) {
-        size_t cap = m->cap ? m->cap : 65536;
-        while (cap < m->n + len)
-            cap *= 2;
-        uint8_t *q = realloc(m->p, cap);
-        if (!q) {
-            m->oom = 1;
-            return;
-        }
-        m->p = q;
-        m->cap = cap;
-    }
-    memcpy(m->p + m->n, data, len);
-    m->n += len;
+    membuf_add(png_get_io_ptr(png), data, len);
 }
 
 static void mem_flush(png_structp png)

@@ -10,40 +10,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fsutil.h"
+
 #define DEFAULT_DIR "shaders_gles"
 #define PRELUDE_NAME "<swell header>"
 #define MAX_NAME 128
 
 /* Growing string; `oom` sticks so callers check once at the end. */
-struct sbuf {
-    char *p;
-    size_t n, cap;
-    int oom;
-};
-
-static void sb_add(struct sbuf *b, const char *s, size_t n)
-{
-    if (b->oom)
-        return;
-    if (b->n + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 4096;
-        while (b->n + n + 1 > cap)
-            cap *= 2;
-        char *p = realloc(b->p, cap);
-        if (!p) {
-            b->oom = 1;
-            return;
-        }
-        b->p = p;
-        b->cap = cap;
-    }
-    memcpy(b->p + b->n, s, n);
-    b->n += n;
-    b->p[b->n] = '\0';
-}
-
-static void sb_printf(struct sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void sb_printf(struct sbuf *b, const char *fmt, ...)
+static void sb_printf(struct membuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void sb_printf(struct membuf *b, const char *fmt, ...)
 {
     char tmp[512];
     va_list ap;
@@ -52,14 +27,14 @@ static void sb_printf(struct sbuf *b, const char *fmt, ...)
     va_end(ap);
     if (n < 0)
         return;
-    sb_add(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
+    membuf_add(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
 }
 
 /* One stage being assembled. files[0] is the generated header; the rest are source files, and
  * their index is the source-string number in `#line N F`. */
 struct assembly {
     const char *dir;
-    struct sbuf out;
+    struct membuf out;
     char files[SHADER_MAX_FILES][MAX_NAME];
     int nfiles;
     int stack[SHADER_MAX_INCLUDE_DEPTH + 1];   /* file indices of the include chain */
@@ -84,11 +59,11 @@ static int read_file(const char *dir, const char *name, char **out, struct swell
     FILE *f = fopen(path, "rb");
     if (!f)
         return swell_fail(err, SWELL_E_IO, "shader: cannot open %s: %s", path, strerror(errno));
-    struct sbuf b = { 0 };
+    struct membuf b = { 0 };
     char chunk[4096];
     size_t n;
     while ((n = fread(chunk, 1, sizeof chunk, f)) > 0)
-        sb_add(&b, chunk, n);
+        membuf_add(&b, chunk, n);
     int bad = ferror(f);
     fclose(f);
     if (bad || b.oom) {
@@ -97,7 +72,7 @@ static int read_file(const char *dir, const char *name, char **out, struct swell
                           path, bad ? "" : ": out of memory");
     }
     if (!b.p)
-        sb_add(&b, "", 0);
+        membuf_add(&b, "", 0);
     if (b.oom || memchr(b.p, '\0', b.n)) {
         free(b.p);
         return swell_fail(err, SWELL_E_FORMAT, "shader: %s is empty or has a NUL byte", path);
@@ -162,8 +137,8 @@ static int process_line(struct assembly *a, int file, int line_no, const char *l
     int kind = directive(line, n, &name, &name_len);
     const char *here = a->files[file];
     if (kind == 0) {
-        sb_add(&a->out, line, n);
-        sb_add(&a->out, "\n", 1);
+        membuf_add(&a->out, line, n);
+        membuf_add(&a->out, "\n", 1);
         return SWELL_OK;
     }
     if (kind == 2)
@@ -188,7 +163,7 @@ static int process_line(struct assembly *a, int file, int line_no, const char *l
                               line_no, chain);
         }
         /* Already inlined on another branch: once is enough (include-once semantics). */
-        sb_add(&a->out, "\n", 1);
+        membuf_add(&a->out, "\n", 1);
         return SWELL_OK;
     }
     if (a->depth + 1 > SHADER_MAX_INCLUDE_DEPTH)
@@ -249,7 +224,7 @@ static int valid_ident(const char *s, size_t n)
 }
 
 /* Caller defines -> #define lines; sets *want_highp when SWELL_HIGHP is among them. */
-static int emit_defines(struct sbuf *b, const char *defines, int *want_highp,
+static int emit_defines(struct membuf *b, const char *defines, int *want_highp,
                         struct swell_err *err)
 {
     *want_highp = 0;
@@ -287,8 +262,8 @@ static int emit_header(struct assembly *a, const struct shader_desc *d, GLenum s
 {
     const struct gpu_caps *c = d->caps;
     int fragment = stage == GL_FRAGMENT_SHADER;
-    struct sbuf *b = &a->out;
-    sb_add(b, "#version 100\n", 13);
+    struct membuf *b = &a->out;
+    membuf_add(b, "#version 100\n", 13);
     /* GLSL ES 1.00 §3.4: #extension before any non-preprocessor token, so before precision. */
     if (fragment && c->glsl100_derivatives && c->derivatives)
         sb_printf(b, "#extension GL_OES_standard_derivatives : enable\n");
@@ -356,7 +331,7 @@ int shader_assemble(const struct shader_desc *d, GLenum stage, char **source,
 
 /* Rewrite driver log lines "S:L(C): msg" (Mesa) or "ERROR: S:L: msg" (others) as
  * "dir/file:L: msg" using the source-string table. Unrecognised lines are kept. */
-static void map_log(const struct assembly *a, const char *log, struct sbuf *out)
+static void map_log(const struct assembly *a, const char *log, struct membuf *out)
 {
     const char *p = log;
     while (*p) {
@@ -398,13 +373,13 @@ static void map_log(const struct assembly *a, const char *log, struct sbuf *out)
                 sb_printf(out, "%s:%ld: ", a->files[0], line);
             else
                 sb_printf(out, "%s/%s:%ld: ", a->dir, a->files[src], line);
-            sb_add(out, severity, strlen(severity));
-            sb_add(out, rest, (size_t)(end - rest));
+            membuf_add(out, severity, strlen(severity));
+            membuf_add(out, rest, (size_t)(end - rest));
         } else {
-            sb_add(out, p, n);
+            membuf_add(out, p, n);
         }
         if (n)
-            sb_add(out, "\n", 1);
+            membuf_add(out, "\n", 1);
         p += n + (nl ? 1 : 0);
     }
 }
@@ -454,7 +429,7 @@ static int compile_stage(const struct shader_desc *d, GLenum stage, GLuint *shad
     glGetShaderiv(*shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
         char *log = gl_log(*shader, 0);
-        struct sbuf mapped = { 0 };
+        struct membuf mapped = { 0 };
         map_log(a, log ? log : "(no log)", &mapped);
         rc = swell_fail(err, SWELL_E_SHADER, "%s(%s shader, tier %s; tools/validate-shaders.sh "
                         "checks every tier)", mapped.p ? mapped.p : "(no log)\n", what,
