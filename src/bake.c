@@ -276,15 +276,23 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     return 0;
 }
 
+/* Smallest and largest lambda_min over the first np patterns (their samples are sorted). */
+static void lmin_range(const struct pattern_work *w, int np, size_t count, float *lo, float *hi)
+{
+    *lo = w[0].lmin_sorted[0];
+    *hi = w[0].lmin_sorted[count - 1];
+    for (int i = 1; i < np; i++) {
+        *lo = fminf(*lo, w[i].lmin_sorted[0]);
+        *hi = fmaxf(*hi, w[i].lmin_sorted[count - 1]);
+    }
+}
+
 /* Shared lambda_T so that the union of the patterns' whitecaps equals the model (see top). */
 static float solve_threshold(struct pattern_work *w, int np, size_t count, double target,
                              double *theta_union)
 {
-    float lo = w[0].lmin_sorted[0], hi = w[0].lmin_sorted[count - 1];
-    for (int i = 1; i < np; i++) {
-        if (w[i].lmin_sorted[0] < lo) lo = w[i].lmin_sorted[0];
-        if (w[i].lmin_sorted[count - 1] > hi) hi = w[i].lmin_sorted[count - 1];
-    }
+    float lo, hi;
+    lmin_range(w, np, count, &lo, &hi);
     hi = nextafterf(hi, INFINITY);
     for (int it = 0; it < 64; it++) {
         float mid = 0.5f * (lo + hi);
@@ -387,11 +395,8 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
      * same crests break every period, so the eq. 9 fraction of the baked loop falls short of
      * the model. Refine lambda_T by bisection on the measured union fraction of the loop,
      * starting from algorithm 1's value (monotone: a higher threshold only adds foam). */
-    float lo = work[0].lmin_sorted[0], hi = work[0].lmin_sorted[count - 1];
-    for (int i = 1; i < foam_patterns; i++) {
-        lo = fminf(lo, work[i].lmin_sorted[0]);
-        hi = fmaxf(hi, work[i].lmin_sorted[count - 1]);
-    }
+    float lo, hi;
+    lmin_range(work, foam_patterns, count, &lo, &hi);
     double keep = 1.0;
     for (int it = 0; it < THRESHOLD_ITERATIONS + 1; it++) {
         if ((r = foam_union(&s, out, work, foam_patterns, lt, tmp, it == THRESHOLD_ITERATIONS,
