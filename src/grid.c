@@ -33,6 +33,8 @@ struct grid {
     uint16_t *idx;
     float *foot;              /* per-vertex footprint (cell size on the sea plane), m */
     float *fade;              /* per-vertex displacement factor (patches) */
+    float *row_foot;          /* per row of triangles: smallest vertex footprint, m */
+    int rows;
     struct grid_pattern p[SWELL_MAX_PATTERNS];
     double crest_m;           /* bound on the summed vertical displacement, m */
     double chop_m;            /* bound on the summed horizontal (choppy) displacement, m */
@@ -112,6 +114,7 @@ void grid_destroy(struct grid *g)
         free(g->p[i].slope_b);
         free(g->p[i].wc_b);
     }
+    free(g->row_foot);
     free(g->fade);
     free(g->foot);
     free(g->idx);
@@ -132,8 +135,8 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
         return swell_fail(err, SWELL_E_NOMEM, "grid: no memory");
     g->t = t;
     g->kind = d->kind;
-    g->w = d->w > 0 ? d->w : 160;
-    g->h = d->h > 0 ? d->h : 120;
+    g->w = d->w > 0 ? d->w : 96;
+    g->h = d->h > 0 ? d->h : 64;
     if (g->kind == 0 && (g->w < 2 || g->h < 2 || g->w * g->h > 65536)) {
         rc = swell_fail(err, SWELL_E_ARG, "grid: %d x %d vertices; need 2..65536 in all "
                         "(16-bit indices on GLES2)", g->w, g->h);
@@ -141,9 +144,11 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     }
     if ((rc = build_topology(g, err)))
         goto fail;
+    g->rows = g->kind == 0 ? g->h - 1 : FAR_RINGS + NEAR_N - 1;
+    g->row_foot = calloc((size_t)g->rows, sizeof(float));
     g->foot = malloc(sizeof(float) * (size_t)g->nverts);
     g->fade = malloc(sizeof(float) * (size_t)g->nverts);
-    if (!g->foot || !g->fade) {
+    if (!g->foot || !g->fade || !g->row_foot) {
         rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for %d vertices", g->nverts);
         goto fail;
     }
@@ -466,6 +471,47 @@ static int update_patches(struct grid *g, const struct camera *cam, float aspect
     return g->nidx;
 }
 
+int grid_row_count(const struct grid *g) { return g->rows; }
+
+void grid_row_span(const struct grid *g, int row, int *first, int *count, float *foot_min)
+{
+    int per_row = g->kind == 0 ? 6 * (g->w - 1) : 6 * 4 * (NEAR_N - 1);
+    int far_idx = g->kind == 0 ? 0 : FAR_RINGS * per_row;
+    if (g->kind == 0 || row < FAR_RINGS) {
+        *first = row * per_row;
+        *count = per_row;
+    } else {
+        *first = far_idx + (row - FAR_RINGS) * 6 * (NEAR_N - 1);
+        *count = 6 * (NEAR_N - 1);
+    }
+    *foot_min = g->row_foot[row];
+}
+
+/* Smallest footprint of each row's vertices (both edges of the row). */
+static void row_footprints(struct grid *g)
+{
+    int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per;
+    for (int r = 0; r < g->rows; r++) {
+        int a0, n, b0;
+        if (g->kind == 0) {
+            a0 = r * g->w; b0 = a0 + g->w; n = g->w;
+        } else if (r < FAR_RINGS) {
+            /* ring k = FAR_RINGS - 1 - r is drawn r-th (outermost first) */
+            int k = FAR_RINGS - 1 - r;
+            a0 = k * per; b0 = (k + 1) * per; n = per;
+        } else {
+            int j = r - FAR_RINGS;
+            a0 = near0 + j * NEAR_N; b0 = a0 + NEAR_N; n = NEAR_N;
+        }
+        float m = g->foot[a0];
+        for (int i = 0; i < n; i++) {
+            m = fminf(m, g->foot[a0 + i]);
+            m = fminf(m, g->foot[b0 + i]);
+        }
+        g->row_foot[r] = m;
+    }
+}
+
 int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts)
 {
     double off[SWELL_MAX_PATTERNS][2];
@@ -483,5 +529,6 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
     }
     for (int k = 0; k < g->nverts; k++)
         shade_vertex(g, verts + (size_t)k * GRID_FLOATS, g->foot[k], g->fade[k], off);
+    row_footprints(g);
     return n;
 }

@@ -26,7 +26,7 @@ enum grid_attr {
 struct grid_desc {
     const struct swell_tables *tables;  /* not owned */
     int kind;                 /* enum geometry_kind (renderer.h): 0 projected grid, 1 patches */
-    int w, h;                 /* projected grid vertices; default 160 x 120 */
+    int w, h;                 /* projected grid vertices; default 96 x 64 (cells of about 13 x 11 pixels at 1280x720) */
     unsigned cpu_patterns;    /* bit i: pattern i's slope/whitecap moments resolved per vertex */
 };
 
@@ -43,6 +43,13 @@ const uint16_t *grid_indices(const struct grid *g);
  * plane and the projected grid's frustum). Returns the number of indices to draw (0 when no sea
  * is in view). Allocates nothing. */
 int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts);
+
+/* Rows of triangles in draw order (far to near): the projected grid's h - 1 rows of cells, or
+ * the far rings then the near patch's rows. After grid_update, row r spans indices
+ * [*first, *first + *count) and *foot_min is the smallest cell footprint (m on the sea plane) of
+ * its vertices; the renderer picks per run of rows which patterns still need a texture fetch. */
+int grid_row_count(const struct grid *g);
+void grid_row_span(const struct grid *g, int row, int *first, int *count, float *foot_min);
 
 /* Texture-coordinate offset of pattern i for this camera: frac(camera_xy / L_i), wrapped in
  * double so an hour in looks like the first second; uv = offset + rest_xy / L_i. */

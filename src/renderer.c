@@ -112,9 +112,9 @@ static void resolve(struct renderer_desc *d)
     if (!d->shader_dir)
         d->shader_dir = "shaders_gles";
     if (d->grid_w <= 0)
-        d->grid_w = 160;
+        d->grid_w = 96;
     if (d->grid_h <= 0)
-        d->grid_h = 120;
+        d->grid_h = 64;
     if (d->sun_elev_deg == 0.0f)
         d->sun_elev_deg = 30.0f;
 }

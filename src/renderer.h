@@ -22,7 +22,7 @@ struct renderer_desc {
     const char *shader_dir;             /* default "shaders_gles" */
     int quality;                        /* enum render_quality. default HIGH */
     int geometry;                       /* enum geometry_kind. default GRID */
-    int grid_w, grid_h;                 /* projected-grid vertices; default 0 = 160 x 120 */
+    int grid_w, grid_h;                 /* projected-grid vertices; default 0 = 96 x 64 */
     float sun_elev_deg;                 /* sun elevation above the horizon; default 0 = 30 */
     float sun_azim_deg;                 /* sun azimuth, CCW from +x; default 0 */
     float exposure;                     /* tone-mapping exposure; default 0 = automatic */
