@@ -23,13 +23,14 @@ float erf_as(float x)
     return x < 0.0 ? -y : y;
 }
 
-// Exposure, then Reinhard x / (1 + x) (never clips hard, keeps hue), then gamma 2 (sqrt) as
-// the sRGB transfer: within 0.03 of the sRGB curve above 0.1, and sqrt is one instruction on
-// GLES2 GPUs where pow() is exp2(log2()) per channel (4x slower on llvmpipe, measured).
-vec3 tone_map(vec3 radiance, float exposure)
+// Reinhard x / (1 + x) of a radiance already scaled by the exposure (the renderer folds the
+// exposure into every radiance uniform), then gamma 2 (sqrt) as the sRGB transfer: within 0.03
+// of the sRGB curve above 0.1, and sqrt is one instruction on GLES2 GPUs where pow() is
+// exp2(log2()) per channel (4x slower on llvmpipe, measured).
+vec3 tone_map(vec3 x)
 {
-    // Clamped before the division: the sun disc times the exposure overflows fp16 (65504), and
-    // inf / inf came out as a dark NaN dot where the sun should be brightest.
-    vec3 x = min(exposure * max(radiance, vec3(0.0)), vec3(1.0e4));
+    // Clamped before the division: at the sun disc x can reach fp16's infinity, and inf / inf
+    // came out as a dark NaN dot where the sun should be brightest.
+    x = clamp(x, vec3(0.0), vec3(1.0e4));
     return sqrt(x / (vec3(1.0) + x));
 }

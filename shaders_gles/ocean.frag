@@ -1,5 +1,9 @@
 // ocean.frag - sea shading (Bruneton 2010 §4-5, Hu 2006 §5, Dupuy 2012 eq. 6-8).
-// validate: FS_PATTERNS=0 | FS_PATTERNS=1 | FS_PATTERNS=2 | FS_PATTERNS=3 | FS_PATTERNS=4
+// validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0
+// FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
+// rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
+// rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
+// FS_WHITECAPS <= FS_PATTERNS: leading slots whose patterns carry whitecaps (bake.c).
 // QUALITY_HIGH: Ross BRDF sun (eq. 15), filtered sky (eq. 27 by LOD bias), effective Fresnel
 // (eq. 26) on Hu's Fresnel texture, refracted light (eq. 28), whitecaps (Dupuy eq. 6).
 // Otherwise Hu's single pass: Fresnel texture, bumped sky lookup, Phong sun.
@@ -10,12 +14,13 @@ uniform sampler2D sky_tex;
 uniform float sky_map_scale;
 uniform float sky_map_size;         // texels
 uniform vec3 sun_dir_world;
-uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0
-uniform vec3 sky_irr;               // sky irradiance on a horizontal plane
-uniform vec3 sea_colour;            // diffuse reflectance of the water body (eq. 28's L_sea)
+uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
+uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
+uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
+uniform vec4 const_slope;           // patterns not fetched: mean slope xy, variance xy
+uniform vec3 const_k;               // ...their Dupuy k mean, k variance, foam clear fraction
 uniform vec2 unresolved_var;        // slope variance below every table, x/y (Bruneton eq. 4)
 uniform float whitecap_epsilon;     // Dupuy eq. 3 threshold on j
-uniform float exposure;
 uniform vec4 slope_scale[4];        // RGBA8 dequantisation per fragment pattern slot
 uniform vec4 slope_bias[4];
 uniform vec4 wc_scale[4];
@@ -37,16 +42,16 @@ uniform sampler2D slope_tex3;
 varying vec2 v_uv3;
 #endif
 #ifdef QUALITY_HIGH
-#if FS_PATTERNS > 0
+#if FS_WHITECAPS > 0
 uniform sampler2D wc_tex0;
 #endif
-#if FS_PATTERNS > 1
+#if FS_WHITECAPS > 1
 uniform sampler2D wc_tex1;
 #endif
-#if FS_PATTERNS > 2
+#if FS_WHITECAPS > 2
 uniform sampler2D wc_tex2;
 #endif
-#if FS_PATTERNS > 3
+#if FS_WHITECAPS > 3
 uniform sampler2D wc_tex3;
 #endif
 #endif
@@ -98,11 +103,12 @@ void main()
 {
     vec3 v = normalize(v_view_dir);
     vec3 l = sun_dir_world;
-    g_slope = v_geo_slope.xy;
-    g_var = v_geo_slope.zw;
-    g_mu = v_geo_k.x;
-    g_kvar = v_geo_k.y;
-    g_clear = 1.0 - v_geo_k.z;
+#ifdef QUALITY_HIGH
+    g_slope = v_geo_slope.xy + const_slope.xy;
+    g_var = v_geo_slope.zw + const_slope.zw;
+    g_mu = v_geo_k.x + const_k.x;
+    g_kvar = v_geo_k.y + const_k.y;
+    g_clear = (1.0 - v_geo_k.z) * const_k.z;
 #if FS_PATTERNS > 0
     SLOPE(0, slope_tex0, v_uv0);
 #endif
@@ -115,19 +121,33 @@ void main()
 #if FS_PATTERNS > 3
     SLOPE(3, slope_tex3, v_uv3);
 #endif
-    vec3 n = normalize(vec3(-g_slope, 1.0));
-    // Bruneton §3.2: reflect normals that face away from the viewer.
-    float nv = dot(n, v);
-    if (nv < 0.0)
-        n = normalize(n - 2.0 * nv * v);
+#else
+    // Single pass: only the mean slope; const_slope.xy also holds the fetched slots' biases.
+    g_slope = v_geo_slope.xy + const_slope.xy;
+#if FS_PATTERNS > 0
+    g_slope += slope_scale[0].xy * texture2D(slope_tex0, v_uv0).xy;
+#endif
+#if FS_PATTERNS > 1
+    g_slope += slope_scale[1].xy * texture2D(slope_tex1, v_uv1).xy;
+#endif
+#if FS_PATTERNS > 2
+    g_slope += slope_scale[2].xy * texture2D(slope_tex2, v_uv2).xy;
+#endif
+#if FS_PATTERNS > 3
+    g_slope += slope_scale[3].xy * texture2D(slope_tex3, v_uv3).xy;
+#endif
+#endif
+    // Bruneton §3.2: normals that face away from the viewer are reflected about the plane
+    // normal to v (one normalize: the sign test works on the unnormalised normal).
+    vec3 n = vec3(-g_slope, 1.0);
+    n = normalize(n - 2.0 * min(dot(n, v), 0.0) * v);
 
     // Hu §5.1 Fresnel bump mapping: the view vector bumped by the normal's tilt indexes the
     // 2D Fresnel texture (kept inside the unit disc it was built on).
     vec2 fv = v.xy - n.xy;
-    fv *= min(1.0, 0.999 / max(length(fv), 1e-3));
+    fv *= min(1.0, 0.999 * inversesqrt(max(dot(fv, fv), 1e-6)));
     vec4 ftex = texture2D(fresnel_tex, vec2(0.5) + 0.5 * fv);
     vec3 r = reflect(-v, n);
-    vec3 l_sea = sea_colour * (sun_irr * max(l.z, 0.0) + sky_irr) / PI;
 
 #ifdef QUALITY_HIGH
     vec2 var = g_var + unresolved_var;
@@ -161,7 +181,8 @@ void main()
         float fs = R0 + (1.0 - R0) * c5 * c5 * c5 * c5 * c5;   // Schlick, as in eq. 15
         float shadow = 1.0 + ross_lambda(cos_v, var_v) + ross_lambda(cos_l, var_v);
         float hn2 = hn * hn;
-        sun = sun_irr * min(p * fs / (4.0 * hn2 * hn2 * cos_v * shadow), 3.0e4);
+        // capped where the tone map is white anyway: no fp16 infinity reaches the mix below
+        sun = min(sun_irr * min(p * fs / (4.0 * hn2 * hn2 * cos_v * shadow), 3.0e4), vec3(1.0e4));
     }
 
     // Sky: the filtered lookup of eq. 27 approximated by a LOD bias equal to the filter's
@@ -172,27 +193,26 @@ void main()
     vec3 sky = texture2D(sky_tex, sky_map_uv(r), bias).rgb * sky_map_scale;
 
     // Refracted light, eq. 28.
-    vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * l_sea;
+    vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_radiance;
 
     // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments, with the baked foam.
-#if FS_PATTERNS > 0
+#if FS_WHITECAPS > 0
     WHITECAP(0, wc_tex0, v_uv0);
 #endif
-#if FS_PATTERNS > 1
+#if FS_WHITECAPS > 1
     WHITECAP(1, wc_tex1, v_uv1);
 #endif
-#if FS_PATTERNS > 2
+#if FS_WHITECAPS > 2
     WHITECAP(2, wc_tex2, v_uv2);
 #endif
-#if FS_PATTERNS > 3
+#if FS_WHITECAPS > 3
     WHITECAP(3, wc_tex3, v_uv3);
 #endif
     float sig_k = sqrt(max(g_kvar, 1e-6));
     float w = 0.5 + 0.5 * erf_as((whitecap_epsilon - g_mu) / (1.41421356 * sig_k));
     float cover = 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * g_clear;
     // Foam: Lambertian, reflectance 0.4 (Dupuy §2), lit by sun and sky.
-    vec3 foam = 0.4 / PI * (sun_irr * max(l.z, 0.0) + sky_irr);
-    vec3 radiance = mix(clear_sea, foam, cover);
+    vec3 radiance = mix(clear_sea, foam_radiance, cover);
 #else
     // Hu 2006 eq. 3 single pass: F from the texture, sky reflected about the bumped normal,
     // Phong sun with the bumped view vector stored in the texture's RGB (Hu §5.3).
@@ -204,7 +224,7 @@ void main()
     float spec = max(dot(vb, sun_refl), 0.0);
     spec *= spec; spec *= spec; spec *= spec; spec *= spec; spec *= spec;
     spec *= spec; spec *= spec; spec *= spec; spec *= spec;
-    vec3 radiance = f * sky + (1.0 - f) * l_sea + sun_irr * spec * 60.0;
+    vec3 radiance = mix(sea_radiance, sky, f) + min(sun_irr * (spec * 60.0), vec3(1.0e4));
 #endif
-    gl_FragColor = vec4(tone_map(radiance, exposure), 1.0);
+    gl_FragColor = vec4(tone_map(radiance), 1.0);
 }

@@ -2,10 +2,9 @@
 #include "common.glsl"
 
 uniform sampler2D sky_tex;
-uniform float sky_map_scale;        // texel * scale = radiance (relative to E0)
+uniform float sky_map_scale;        // texel * scale = radiance x exposure
 uniform vec3 sun_dir_world;
-uniform vec3 sun_radiance;          // sun irradiance / sun solid angle, clamped fp16-safe
-uniform float exposure;
+uniform vec3 sun_radiance;          // sun irradiance / solid angle x exposure, fp16-safe
 varying vec3 v_ray_world;
 
 void main()
@@ -17,5 +16,5 @@ void main()
     vec3 c = d - sun_dir_world;
     if (dot(c, c) < 2.2e-5 && d.z > 0.0)
         l += sun_radiance;
-    gl_FragColor = vec4(tone_map(l, exposure), 1.0);
+    gl_FragColor = vec4(tone_map(l), 1.0);
 }

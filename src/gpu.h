@@ -28,6 +28,7 @@ struct gpu_caps {
     int max_texture_size;
     int context_major;          /* GL_VERSION major of the context (not the tier) */
     int fragment_highp;         /* highp float in fragment shaders (never on GLES2_MIN) */
+    int prefer_highp;           /* fragment shaders use highp: software rasteriser (gpu.c) */
     int glsl100_derivatives;    /* #version 100 shaders may enable GL_OES_standard_derivatives */
     int glsl100_texture_lod;    /* #version 100 shaders may enable GL_EXT_shader_texture_lod */
     char vendor[64], renderer[128], version[128];

@@ -33,7 +33,7 @@ struct grid {
     uint16_t *idx;
     float *foot;              /* per-vertex footprint (cell size on the sea plane), m */
     float *fade;              /* per-vertex displacement factor (patches) */
-    float *row_foot;          /* per row of triangles: smallest vertex footprint, m */
+    float *row_foot;          /* per row of triangles: smallest squared distance, m^2 */
     int rows;
     struct grid_pattern p[SWELL_MAX_PATTERNS];
     double crest_m;           /* bound on the summed vertical displacement, m */
@@ -473,7 +473,7 @@ static int update_patches(struct grid *g, const struct camera *cam, float aspect
 
 int grid_row_count(const struct grid *g) { return g->rows; }
 
-void grid_row_span(const struct grid *g, int row, int *first, int *count, float *foot_min)
+void grid_row_span(const struct grid *g, int row, int *first, int *count, float *dist2_min)
 {
     int per_row = g->kind == 0 ? 6 * (g->w - 1) : 6 * 4 * (NEAR_N - 1);
     int far_idx = g->kind == 0 ? 0 : FAR_RINGS * per_row;
@@ -484,11 +484,12 @@ void grid_row_span(const struct grid *g, int row, int *first, int *count, float 
         *first = far_idx + (row - FAR_RINGS) * 6 * (NEAR_N - 1);
         *count = 6 * (NEAR_N - 1);
     }
-    *foot_min = g->row_foot[row];
+    *dist2_min = g->row_foot[row];
 }
 
-/* Smallest footprint of each row's vertices (both edges of the row). */
-static void row_footprints(struct grid *g)
+/* Smallest squared horizontal distance from the camera of each row's vertices (both edges of
+ * the row), from their rest positions. */
+static void row_distances(struct grid *g, const float *verts)
 {
     int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per;
     for (int r = 0; r < g->rows; r++) {
@@ -503,10 +504,11 @@ static void row_footprints(struct grid *g)
             int j = r - FAR_RINGS;
             a0 = near0 + j * NEAR_N; b0 = a0 + NEAR_N; n = NEAR_N;
         }
-        float m = g->foot[a0];
-        for (int i = 0; i < n; i++) {
-            m = fminf(m, g->foot[a0 + i]);
-            m = fminf(m, g->foot[b0 + i]);
+        float m = INFINITY;
+        for (int e = 0; e < 2; e++) {
+            const float *v = verts + (size_t)(e ? b0 : a0) * GRID_FLOATS + GRID_A_REST;
+            for (int i = 0; i < n; i++, v += GRID_FLOATS)
+                m = fminf(m, v[0] * v[0] + v[1] * v[1]);
         }
         g->row_foot[r] = m;
     }
@@ -529,6 +531,6 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
     }
     for (int k = 0; k < g->nverts; k++)
         shade_vertex(g, verts + (size_t)k * GRID_FLOATS, g->foot[k], g->fade[k], off);
-    row_footprints(g);
+    row_distances(g, verts);
     return n;
 }

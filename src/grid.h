@@ -46,10 +46,11 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
 
 /* Rows of triangles in draw order (far to near): the projected grid's h - 1 rows of cells, or
  * the far rings then the near patch's rows. After grid_update, row r spans indices
- * [*first, *first + *count) and *foot_min is the smallest cell footprint (m on the sea plane) of
- * its vertices; the renderer picks per run of rows which patterns still need a texture fetch. */
+ * [*first, *first + *count) and *dist2_min is the smallest squared horizontal distance (m^2)
+ * from the camera of its vertices' rest positions; the renderer derives the pixel footprint
+ * from it and picks per run of rows which patterns still need a texture fetch. */
 int grid_row_count(const struct grid *g);
-void grid_row_span(const struct grid *g, int row, int *first, int *count, float *foot_min);
+void grid_row_span(const struct grid *g, int row, int *first, int *count, float *dist2_min);
 
 /* Texture-coordinate offset of pattern i for this camera: frac(camera_xy / L_i), wrapped in
  * double so an hour in looks like the first second; uv = offset + rest_xy / L_i. */

@@ -5,6 +5,13 @@
  * VBO per frame; loop frames of the slope and whitecap tables are blended on the CPU (stream.c)
  * into one texture per pattern and kind; patterns without a free texture unit are resolved per
  * vertex. Sky: analytic, baked once into a stereographic map (sky.c). Shading: ocean.frag.
+ *
+ * Fetches are the cost on fill-rate-bound GPUs (and llvmpipe): the sea is drawn as runs of grid
+ * rows, far to near, each with the ocean.frag variant that fetches only the patterns not yet
+ * fully filtered there. Where a pixel covers a whole patch of pattern i (footprint >= L_i) its
+ * mip chain is at the top level, the patch's mean slope and slope variance (Bruneton §4.1; the
+ * same for Dupuy's k moments), so the variant takes those as constants. Whitecap tables are
+ * fetched only for patterns that carry whitecaps (the others' tables are constant).
  */
 #include <math.h>
 #include <stdio.h>
@@ -22,24 +29,29 @@
 
 enum ocean_uniform {
     OU_WORLD_TO_CLIP, OU_UV_OFFSET, OU_INV_SIZE, OU_FRESNEL_TEX, OU_SKY_TEX, OU_SKY_SCALE,
-    OU_SKY_SIZE, OU_SUN_DIR, OU_SUN_IRR, OU_SKY_IRR, OU_SEA_COLOUR, OU_UNRESOLVED, OU_EPSILON,
-    OU_EXPOSURE, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
+    OU_SKY_SIZE, OU_SUN_DIR, OU_SUN_IRR, OU_SEA_RADIANCE, OU_FOAM_RADIANCE, OU_CONST_SLOPE,
+    OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
-    "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sky_irr", "sea_colour",
-    "unresolved_var", "whitecap_epsilon", "exposure", "slope_scale", "slope_bias", "wc_scale",
-    "wc_bias", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
+    "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sea_radiance", "foam_radiance",
+    "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
+    "wc_scale", "wc_bias", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
     "wc_tex2", "wc_tex3"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SKY_SCALE, SU_SUN_DIR, SU_SUN_RADIANCE,
-                   SU_EXPOSURE, SU_COUNT };
+                   SU_COUNT };
 static const char *const sky_uniform_names[SU_COUNT] = {
-    "clip_to_world_rel", "sky_tex", "sky_map_scale", "sun_dir_world", "sun_radiance", "exposure"
+    "clip_to_world_rel", "sky_tex", "sky_map_scale", "sun_dir_world", "sun_radiance"
 };
+
+/* A pattern is dropped from a run of rows once its smallest pixel footprint there exceeds the
+ * patch by this factor (LOD >= log2 N + 0.3: trilinear reads the 1x1 level alone), a margin for
+ * the footprint estimate from the rows' vertices. */
+#define DROP_FOOTPRINT 1.25f
 
 enum { A_POS = 0, A_REST, A_GEO_SLOPE, A_GEO_K, A_COUNT };
 static const struct shader_attrib ocean_attribs[A_COUNT] = {
@@ -55,6 +67,8 @@ struct fs_slot {
     const struct swell_table *slope, *wc;
     GLuint slope_tex, wc_tex;
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
+    int breaks;                       /* whitecap table not constant: fetched in high quality */
+    float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
 };
@@ -65,17 +79,20 @@ struct renderer {
     const struct swell_tables *t;
     struct grid *grid;
     struct sky sky;
-    struct shader_program ocean, skyp;
-    GLint ou[OU_COUNT], su[SU_COUNT];
+    struct shader_program ocean[SWELL_MAX_PATTERNS + 1], skyp;   /* ocean[k]: k slots fetched */
+    GLint ou[SWELL_MAX_PATTERNS + 1][OU_COUNT], su[SU_COUNT];
     GLuint fresnel_tex, sky_tex, vbo, ibo, quad_vbo;
     struct swell_table fresnel_own;   /* built here only when the tables lack one */
-    int nfs;                          /* patterns shaded from textures */
+    int nfs;                          /* patterns shaded from textures, largest first */
+    int nwc;                          /* leading slots whose whitecaps are fetched (high) */
     unsigned cpu_mask;                /* patterns resolved per vertex */
     struct fs_slot slot[SWELL_MAX_PATTERNS];
     float *verts;
     float exposure;
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
+    int draws;                        /* sea draws in the last frame */
+    long long fetched_rows[SWELL_MAX_PATTERNS + 1];   /* indices drawn per variant, all frames */
 };
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
@@ -135,7 +152,8 @@ void renderer_destroy(struct renderer *r)
     gpu_texture_destroy(r->gpu, &r->sky_tex);
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
     shader_program_destroy(&r->skyp);
-    shader_program_destroy(&r->ocean);
+    for (int k = SWELL_MAX_PATTERNS; k >= 0; k--)
+        shader_program_destroy(&r->ocean[k]);
     free(r->fresnel_own.data);
     free(r->verts);
     sky_destroy(&r->sky);
@@ -143,13 +161,26 @@ void renderer_destroy(struct renderer *r)
     free(r);
 }
 
-/* Largest patterns go to the vertices: their waves are the ones the grid resolves best. */
+/* Channels 0..2 (k, k^2, foam opacity: what ocean.frag reads; channel 3 is the bake's lambda_min)
+ * the same in every texel of every level and layer: the whitecaps of a pattern that carries
+ * none (bake.c) are a constant, never a texture. */
+static int whitecaps_constant(const struct swell_table *t)
+{
+    size_t n = table_bytes(t);
+    for (size_t i = 4; i < n; i++)
+        if ((i & 3) != 3 && t->data[i] != t->data[i & 3])
+            return 0;
+    return 1;
+}
+
+/* Fragment-shader slots go to the smallest patterns, largest first; when the units run short
+ * the largest patterns go to the vertices (the grid resolves their waves best). High quality
+ * also fetches whitecaps for the leading slots that carry them. */
 static void assign_patterns(struct renderer *r)
 {
-    int order[SWELL_MAX_PATTERNS], n = r->t->patterns;
-    int per = r->d.quality == QUALITY_HIGH ? 2 : 1;
+    int order[SWELL_MAX_PATTERNS], n = r->t->patterns, breaks[SWELL_MAX_PATTERNS];
     int units = r->gpu->caps.texture_units > 0 ? r->gpu->caps.texture_units : 8;
-    int fs = (units - UNIT_PATTERNS) / per;
+    int high = r->d.quality == QUALITY_HIGH, fs, nwc = 0;
     for (int i = 0; i < n; i++)
         order[i] = i;
     for (int i = 1; i < n; i++)
@@ -158,11 +189,22 @@ static void assign_patterns(struct renderer *r)
             order[j] = order[j - 1];
             order[j - 1] = tmp;
         }
-    if (fs > n)
-        fs = n;
-    if (fs > SWELL_MAX_PATTERNS)
-        fs = SWELL_MAX_PATTERNS;
+    for (int i = 0; i < n; i++) {
+        const struct swell_table *wc = tables_find(r->t, TABLE_WHITECAP, order[i]);
+        breaks[i] = wc && wc->format == FORMAT_RGBA8 && !whitecaps_constant(wc);
+    }
+    for (fs = n < SWELL_MAX_PATTERNS ? n : SWELL_MAX_PATTERNS; fs > 0; fs--) {
+        nwc = 0;
+        for (int s = 0; high && s < fs; s++)
+            if (breaks[n - fs + s])
+                nwc = s + 1;
+        if (UNIT_PATTERNS + fs + nwc <= units)
+            break;
+    }
+    if (fs == 0)
+        nwc = 0;
     r->nfs = fs;
+    r->nwc = nwc;
     r->cpu_mask = 0;
     for (int i = 0; i < n - fs; i++)
         r->cpu_mask |= 1u << order[i];
@@ -171,6 +213,7 @@ static void assign_patterns(struct renderer *r)
         sl->pattern = order[n - fs + s];
         sl->slope = tables_find(r->t, TABLE_SLOPE, sl->pattern);
         sl->wc = tables_find(r->t, TABLE_WHITECAP, sl->pattern);
+        sl->breaks = breaks[n - fs + s];
     }
 }
 
@@ -221,7 +264,7 @@ static int create_textures(struct renderer *r, struct swell_err *err)
         if (!(sl->slope_b = malloc(stream_blended_bytes(sl->slope))))
             return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory to blend slopes");
         r->stream_bytes += stream_blended_bytes(sl->slope);
-        if (r->d.quality != QUALITY_HIGH)
+        if (s >= r->nwc)
             continue;
         if ((rc = gpu_texture_create(r->gpu, sl->wc->width, sl->wc->height, sl->wc->levels,
                                      FORMAT_RGBA8, 1, "renderer: whitecap", &sl->wc_tex, err)))
@@ -238,8 +281,6 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     char defines[128];
     struct shader_desc od = { 0 }, sd = { 0 };
     int rc;
-    snprintf(defines, sizeof(defines), "FS_PATTERNS=%d%s", r->nfs,
-             r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
     od.dir = sd.dir = r->d.shader_dir;
     od.caps = sd.caps = &r->gpu->caps;
     od.vs_file = "ocean.vert";
@@ -247,11 +288,15 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     od.defines = defines;
     od.uniform_names = ocean_uniform_names;
     od.uniform_count = OU_COUNT;
-    od.uniform_locations = r->ou;
     od.attribs = ocean_attribs;
     od.attrib_count = A_COUNT;
-    if ((rc = shader_program_build(&od, &r->ocean, err)))
-        return rc;
+    for (int k = 0; k <= r->nfs; k++) {
+        snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s", k,
+                 k < r->nwc ? k : r->nwc, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
+        od.uniform_locations = r->ou[k];
+        if ((rc = shader_program_build(&od, &r->ocean[k], err)))
+            return rc;
+    }
     sd.vs_file = "sky.vert";
     sd.fs_file = "sky.frag";
     sd.uniform_names = sky_uniform_names;
@@ -358,6 +403,31 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     return 0;
 }
 
+/* Dequantised first texel of the top (1x1) level of a blended chain or, for a table that is
+ * not streamed, of the table itself (constant tables only reach here unstreamed). */
+static void top_texel(const struct swell_table *t, const uint8_t *chain, float out[4])
+{
+    const uint8_t *px = chain ? chain + stream_level_offset(t, t->levels - 1)
+                              : t->data + table_offset(t, t->levels - 1, 0);
+    for (int c = 0; c < 4; c++)
+        out[c] = t->bias[c] + t->scale[c] * (float)px[c] * (1.0f / 255.0f);
+}
+
+/* A slot's moments where its pattern is not fetched: mean and variance over the whole patch. */
+static void slot_constants(struct fs_slot *sl)
+{
+    float m[4];
+    top_texel(sl->slope, sl->slope_b, m);
+    sl->top_slope[0] = m[0];
+    sl->top_slope[1] = m[1];
+    sl->top_slope[2] = fmaxf(m[2] - m[0] * m[0], 0.0f);
+    sl->top_slope[3] = fmaxf(m[3] - m[1] * m[1], 0.0f);
+    top_texel(sl->wc, sl->wc_tex ? sl->wc_b : NULL, m);
+    sl->top_k[0] = m[0];
+    sl->top_k[1] = fmaxf(m[1] - m[0] * m[0], 0.0f);
+    sl->top_k[2] = 1.0f - fminf(fmaxf(m[2], 0.0f), 1.0f);
+}
+
 static void stream_textures(struct renderer *r, double t_s)
 {
     for (int s = 0; s < r->nfs; s++) {
@@ -371,11 +441,12 @@ static void stream_textures(struct renderer *r, double t_s)
         stream_blend(sl->slope, &ph, sl->slope_b);
         upload_chain(sl->slope_tex, sl->slope->width, sl->slope->height, sl->slope->levels,
                      sl->slope_b, "renderer: slope stream", NULL);
-        if (!sl->wc_tex)
-            continue;
-        stream_blend(sl->wc, &ph, sl->wc_b);
-        upload_chain(sl->wc_tex, sl->wc->width, sl->wc->height, sl->wc->levels, sl->wc_b,
-                     "renderer: whitecap stream", NULL);
+        if (sl->wc_tex) {
+            stream_blend(sl->wc, &ph, sl->wc_b);
+            upload_chain(sl->wc_tex, sl->wc->width, sl->wc->height, sl->wc->levels, sl->wc_b,
+                         "renderer: whitecap stream", NULL);
+        }
+        slot_constants(sl);
     }
 }
 
@@ -407,15 +478,14 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
     /* The sun disc: E_sun over its solid angle (6.8e-5 sr), clamped to stay fp16-finite. */
     float sun_rad[3];
     for (int c = 0; c < 3; c++)
-        sun_rad[c] = fminf(r->sky.sun_irr[c] / 6.8e-5f, 3.0e4f);
+        sun_rad[c] = fminf(r->exposure * fminf(r->sky.sun_irr[c] / 6.8e-5f, 3.0e4f), 3.0e4f);
     glm_mat4_inv(world_to_clip, inv);
     glUseProgram(r->skyp.program);
     glUniformMatrix4fv(r->su[SU_CLIP_TO_WORLD], 1, GL_FALSE, (const GLfloat *)inv);
     bind_tex(UNIT_SKY, r->sky_tex, r->su[SU_SKY_TEX]);
-    glUniform1f(r->su[SU_SKY_SCALE], r->sky.map_scale);
+    glUniform1f(r->su[SU_SKY_SCALE], r->exposure * r->sky.map_scale);
     glUniform3fv(r->su[SU_SUN_DIR], 1, r->sky.sun_dir);
     glUniform3fv(r->su[SU_SUN_RADIANCE], 1, sun_rad);
-    glUniform1f(r->su[SU_EXPOSURE], r->exposure);
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
@@ -424,16 +494,28 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
     glDisable(GL_SCISSOR_TEST);
 }
 
-static void set_ocean_uniforms(struct renderer *r, const struct camera *cam, mat4 world_to_clip)
+/* Uniforms of the variant fetching the first k slots; slots k.. enter as their constants. */
+static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *cam,
+                               mat4 world_to_clip)
 {
-    const GLint *u = r->ou;
+    const GLint *u = r->ou[k];
     float off[SWELL_MAX_PATTERNS][2] = { { 0 } }, inv[SWELL_MAX_PATTERNS] = { 0 };
     float ss[SWELL_MAX_PATTERNS][4] = { { 0 } }, sb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
-    static const float sea_colour[3] = { 0.004f, 0.016f, 0.024f };
+    float cs[4] = { 0.0f, 0.0f, 0.0f, 0.0f }, ck[3] = { 0.0f, 0.0f, 1.0f };
+    float sun[3], sea[3], foam[3], e = r->exposure;
+    static const float sea_colour[3] = { 0.004f, 0.016f, 0.024f };   /* eq. 28's water body */
     float unres[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
     for (int s = 0; s < r->nfs; s++) {
         struct fs_slot *sl = &r->slot[s];
+        if (s >= k) {
+            for (int c = 0; c < 4; c++)
+                cs[c] += sl->top_slope[c];
+            ck[0] += sl->top_k[0];
+            ck[1] += sl->top_k[1];
+            ck[2] *= sl->top_k[2];
+            continue;
+        }
         grid_uv_offset(r->t, sl->pattern, cam, off[s]);
         inv[s] = 1.0f / r->t->pattern[sl->pattern].size_m;
         memcpy(ss[s], sl->slope->scale, sizeof(ss[s]));
@@ -441,8 +523,26 @@ static void set_ocean_uniforms(struct renderer *r, const struct camera *cam, mat
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
         bind_tex(UNIT_PATTERNS + s, sl->slope_tex, u[OU_SLOPE_TEX0 + s]);
-        if (sl->wc_tex)
+        if (sl->wc_tex && s < r->nwc)
             bind_tex(UNIT_PATTERNS + r->nfs + s, sl->wc_tex, u[OU_WC_TEX0 + s]);
+        else if (sl->wc_tex == 0) {
+            /* high quality, not fetched: the constant table's moments */
+            ck[0] += sl->top_k[0];
+            ck[1] += sl->top_k[1];
+            ck[2] *= sl->top_k[2];
+        }
+        if (r->d.quality != QUALITY_HIGH) {
+            /* the single pass adds the fetched slots' slope biases once, here */
+            cs[0] += sb[s][0];
+            cs[1] += sb[s][1];
+        }
+    }
+    /* Radiances arrive scaled by the exposure (tone_map in common.glsl takes them so). */
+    for (int c = 0; c < 3; c++) {
+        float lit = r->sky.sun_irr[c] * fmaxf(r->sky.sun_dir[2], 0.0f) + r->sky.sky_irr[c];
+        sun[c] = e * r->sky.sun_irr[c];
+        sea[c] = e * sea_colour[c] * lit / (float)M_PI;
+        foam[c] = e * 0.4f * lit / (float)M_PI;      /* Lambertian foam, Dupuy §2 */
     }
     glUniformMatrix4fv(u[OU_WORLD_TO_CLIP], 1, GL_FALSE, (const GLfloat *)world_to_clip);
     glUniform2fv(u[OU_UV_OFFSET], SWELL_MAX_PATTERNS, &off[0][0]);
@@ -451,17 +551,65 @@ static void set_ocean_uniforms(struct renderer *r, const struct camera *cam, mat
     glUniform4fv(u[OU_SLOPE_BIAS], SWELL_MAX_PATTERNS, &sb[0][0]);
     glUniform4fv(u[OU_WC_SCALE], SWELL_MAX_PATTERNS, &ws[0][0]);
     glUniform4fv(u[OU_WC_BIAS], SWELL_MAX_PATTERNS, &wb[0][0]);
+    glUniform4fv(u[OU_CONST_SLOPE], 1, cs);
+    glUniform3fv(u[OU_CONST_K], 1, ck);
     bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(UNIT_SKY, r->sky_tex, u[OU_SKY_TEX]);
-    glUniform1f(u[OU_SKY_SCALE], r->sky.map_scale);
+    glUniform1f(u[OU_SKY_SCALE], e * r->sky.map_scale);
     glUniform1f(u[OU_SKY_SIZE], (float)r->sky.size);
     glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
-    glUniform3fv(u[OU_SUN_IRR], 1, r->sky.sun_irr);
-    glUniform3fv(u[OU_SKY_IRR], 1, r->sky.sky_irr);
-    glUniform3fv(u[OU_SEA_COLOUR], 1, sea_colour);
+    glUniform3fv(u[OU_SUN_IRR], 1, sun);
+    glUniform3fv(u[OU_SEA_RADIANCE], 1, sea);
+    glUniform3fv(u[OU_FOAM_RADIANCE], 1, foam);
     glUniform2fv(u[OU_UNRESOLVED], 1, unres);
     glUniform1f(u[OU_EPSILON], r->t->whitecap_epsilon);
-    glUniform1f(u[OU_EXPOSURE], r->exposure);
+}
+
+/* Slots fetched for a row whose nearest vertex is at squared horizontal distance d2: those whose
+ * patch is still larger than the pixel footprint there. On a plane seen from altitude a at
+ * distance d the footprint along the view (the larger axis, which sets the LOD) is
+ * d^2 / a times the pixel's angle. Slots are largest first, so the answer is a count. */
+static int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle)
+{
+    float foot = (d2 + alt * alt) / alt * pix_angle;
+    int k = 0;
+    while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * DROP_FOOTPRINT > foot)
+        k++;
+    return k;
+}
+
+/* The sea, far rows first, one draw per run of rows fetching the same slots. */
+static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
+                      int height)
+{
+    float alt = fmaxf((float)cam->pos[2], 0.5f);
+    float fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * (float)(M_PI / 180.0);
+    float pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
+    int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1;
+    r->draws = 0;
+    for (int row = 0; row <= rows; row++) {
+        int first = 0, count = 0, k = -2;
+        float d2 = 0.0f;
+        if (row < rows) {
+            grid_row_span(r->grid, row, &first, &count, &d2);
+            k = slots_needed(r, d2, alt, pix);
+        }
+        if (k == run_k && first == run_first + run_count) {
+            run_count += count;
+            continue;
+        }
+        if (run_count > 0) {
+            glUseProgram(r->ocean[run_k].program);
+            set_ocean_uniforms(r, run_k, cam, world_to_clip);
+            glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
+                           (const void *)((size_t)run_first * sizeof(uint16_t)));
+            r->draws++;
+            r->fetched_rows[run_k] += run_count;
+        }
+        run_first = first;
+        run_count = count;
+        run_k = k;
+    }
 }
 
 int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
@@ -493,8 +641,6 @@ int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int
             glEnable(GL_DEPTH_TEST);
             glDepthFunc(GL_LEQUAL);
         }
-        glUseProgram(r->ocean.program);
-        set_ocean_uniforms(r, cam, world_to_clip);
         glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
         glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
         for (int a = 0; a < A_COUNT; a++)
@@ -508,7 +654,7 @@ int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int
         glVertexAttribPointer(A_GEO_K, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
                               (const void *)(GRID_A_K * sizeof(float)));
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
-        glDrawElements(GL_TRIANGLES, nidx, GL_UNSIGNED_SHORT, (const void *)0);
+        draw_runs(r, cam, world_to_clip, height);
         for (int a = 0; a < A_COUNT; a++)
             glDisableVertexAttribArray((GLuint)a);
         glDisable(GL_DEPTH_TEST);
@@ -525,6 +671,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
         sizeof(float) * GRID_FLOATS * (uint64_t)grid_vertex_count(r->grid);
     out->vertices = grid_vertex_count(r->grid);
     out->triangles = grid_index_count(r->grid) / 3;
+    out->sea_draws = r->draws;
 }
 
 void renderer_describe(const struct renderer *r, char *buf, size_t size)
@@ -534,10 +681,16 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "geometry: %s, CPU-displaced (no vertex texture fetch), %d vertices streamed per frame\n"
         "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x)\n"
         "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
+        "fetches: per run of rows only the patterns not fully filtered there; whitecaps of %d "
+        "pattern(s)\n"
+        "fragment precision: %s\n"
         "shading: %s\n",
         gpu_tier_name(r->gpu->caps.tier), r->gpu->caps.texture_units,
         geometry_kind_name(r->d.geometry), grid_vertex_count(r->grid), r->nfs,
-        r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes,
+        r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes, r->nwc,
+        r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
+        : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
+                                    : "mediump",
         r->d.quality == QUALITY_HIGH
             ? "high: Ross BRDF sun (eq. 15), sky map LOD-biased (eq. 27), effective Fresnel "
               "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"

@@ -32,6 +32,7 @@ struct renderer_stats {
     uint64_t gpu_bytes;                 /* accounted GPU bytes held by the renderer */
     uint64_t cpu_bytes_per_frame;       /* bytes streamed to the GPU each frame */
     int vertices, triangles;
+    int sea_draws;                      /* runs of rows drawn in the last frame (renderer.c) */
 };
 
 struct renderer;

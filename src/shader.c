@@ -283,8 +283,9 @@ static int emit_header(struct assembly *a, const struct shader_desc *d, GLenum s
     if (rc)
         return rc;
     if (fragment) {
-        /* DESIGN.md: mediump only on gles2-min; highp where asked for and really present. */
-        if (want_highp && c->fragment_highp && tier != TIER_GLES2_MIN)
+        /* DESIGN.md: mediump only on gles2-min; highp where asked for (or preferred by the
+         * device, gpu.c) and really present. */
+        if ((want_highp || c->prefer_highp) && c->fragment_highp && tier != TIER_GLES2_MIN)
             sb_printf(b, "#define SWELL_HAS_HIGHP 1\nprecision highp float;\n");
         else
             sb_printf(b, "precision mediump float;\n");
