@@ -6,7 +6,9 @@
 // FS_WHITECAPS <= FS_PATTERNS: leading slots whose patterns carry whitecaps (bake.c).
 // QUALITY_HIGH: Ross BRDF sun (eq. 15), filtered sky (eq. 27 by LOD bias), effective Fresnel
 // (eq. 26) on Hu's Fresnel texture, refracted light (eq. 28), whitecaps (Dupuy eq. 6).
-// Otherwise Hu's single pass: Fresnel texture, bumped sky lookup, Phong sun.
+// Otherwise Hu's single pass: Fresnel texture, bumped sky lookup, Phong sun, linearised in the
+// slope by ocean.vert and mixed in display space as Hu's LDR pass was: the renderer binds a
+// tone-mapped sky map and a Fresnel texture whose R holds Hu's Phong term for the current sun.
 #include "common.glsl"
 
 uniform sampler2D fresnel_tex;      // Hu §5.1: RGB = 0.5 + 0.5 view vector, A = Fresnel
@@ -56,9 +58,17 @@ uniform sampler2D wc_tex3;
 #endif
 #endif
 
+#ifdef QUALITY_HIGH
 varying vec3 v_view_dir;
 varying vec4 v_geo_slope;
 varying vec3 v_geo_k;
+#else
+varying vec4 v_lin;                 // ocean.vert: lookup coordinates at the vertex's slope...
+varying vec4 v_lin_dx;              // ...and their derivatives in the slope
+varying vec4 v_lin_dy;
+uniform vec3 sea_display;           // low: tone-mapped eq. 28 water colour
+uniform vec3 sun_display;           // low: display-space colour of Hu's Phong highlight
+#endif
 
 // Running sums over patterns: mean slope, resolved slope variance <s^2> - <s>^2 (Bruneton
 // §4.1, mip-filtered moments), Dupuy's k mean and variance, product of (1 - foam opacity).
@@ -101,9 +111,31 @@ float ross_lambda(float cos_t, float var)
 
 void main()
 {
+#ifndef QUALITY_HIGH
+    // Single pass: the slope's deviation from ocean.vert's s0 (const_slope.zw: the fetched
+    // slots' biases minus their means), then the two linearised lookups.
+    vec2 ds = const_slope.zw;
+#if FS_PATTERNS > 0
+    ds += slope_scale[0].xy * texture2D(slope_tex0, v_uv0).xy;
+#endif
+#if FS_PATTERNS > 1
+    ds += slope_scale[1].xy * texture2D(slope_tex1, v_uv1).xy;
+#endif
+#if FS_PATTERNS > 2
+    ds += slope_scale[2].xy * texture2D(slope_tex2, v_uv2).xy;
+#endif
+#if FS_PATTERNS > 3
+    ds += slope_scale[3].xy * texture2D(slope_tex3, v_uv3).xy;
+#endif
+    vec4 uv = v_lin + v_lin_dx * ds.x + v_lin_dy * ds.y;
+    // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal, the
+    // Phong sun of Hu §5.3 (R: evaluated per texel of the bumped view vector for this sun).
+    vec4 ftex = texture2D(fresnel_tex, uv.xy);
+    vec3 sky = texture2D(sky_tex, uv.zw).rgb;
+    gl_FragColor = vec4(mix(sea_display, sky, ftex.a) + ftex.r * sun_display, 1.0);
+#else
     vec3 v = normalize(v_view_dir);
     vec3 l = sun_dir_world;
-#ifdef QUALITY_HIGH
     g_slope = v_geo_slope.xy + const_slope.xy;
     g_var = v_geo_slope.zw + const_slope.zw;
     g_mu = v_geo_k.x + const_k.x;
@@ -121,22 +153,6 @@ void main()
 #if FS_PATTERNS > 3
     SLOPE(3, slope_tex3, v_uv3);
 #endif
-#else
-    // Single pass: only the mean slope; const_slope.xy also holds the fetched slots' biases.
-    g_slope = v_geo_slope.xy + const_slope.xy;
-#if FS_PATTERNS > 0
-    g_slope += slope_scale[0].xy * texture2D(slope_tex0, v_uv0).xy;
-#endif
-#if FS_PATTERNS > 1
-    g_slope += slope_scale[1].xy * texture2D(slope_tex1, v_uv1).xy;
-#endif
-#if FS_PATTERNS > 2
-    g_slope += slope_scale[2].xy * texture2D(slope_tex2, v_uv2).xy;
-#endif
-#if FS_PATTERNS > 3
-    g_slope += slope_scale[3].xy * texture2D(slope_tex3, v_uv3).xy;
-#endif
-#endif
     // Bruneton §3.2: normals that face away from the viewer are reflected about the plane
     // normal to v (one normalize: the sign test works on the unnormalised normal).
     vec3 n = vec3(-g_slope, 1.0);
@@ -149,7 +165,6 @@ void main()
     vec4 ftex = texture2D(fresnel_tex, vec2(0.5) + 0.5 * fv);
     vec3 r = reflect(-v, n);
 
-#ifdef QUALITY_HIGH
     vec2 var = g_var + unresolved_var;
     // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below. 1e-4 is
     // also the smallest normal fp16 value squared-safe here.
@@ -213,18 +228,6 @@ void main()
     float cover = 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * g_clear;
     // Foam: Lambertian, reflectance 0.4 (Dupuy §2), lit by sun and sky.
     vec3 radiance = mix(clear_sea, foam_radiance, cover);
-#else
-    // Hu 2006 eq. 3 single pass: F from the texture, sky reflected about the bumped normal,
-    // Phong sun with the bumped view vector stored in the texture's RGB (Hu §5.3).
-    float f = ftex.a;
-    vec3 sky = texture2D(sky_tex, sky_map_uv(r)).rgb * sky_map_scale;
-    vec3 vb = ftex.rgb * 2.0 - 1.0;
-    vec3 sun_refl = vec3(-l.x, -l.y, l.z);
-    // Phong exponent 512 by nine squarings: no pow() (exp2(log2) per pixel) in the single pass.
-    float spec = max(dot(vb, sun_refl), 0.0);
-    spec *= spec; spec *= spec; spec *= spec; spec *= spec; spec *= spec;
-    spec *= spec; spec *= spec; spec *= spec; spec *= spec;
-    vec3 radiance = mix(sea_radiance, sky, f) + min(sun_irr * (spec * 60.0), vec3(1.0e4));
-#endif
     gl_FragColor = vec4(tone_map(radiance), 1.0);
+#endif
 }

@@ -1,20 +1,20 @@
-// sky.frag - the background sky from the baked stereographic sky map, plus the sun disc.
+// sky.frag - the background sky from the tone-mapped (display-space) sky map the renderer
+// derives from the baked one, plus the sun disc: no tone mapping per pixel.
 #include "common.glsl"
 
-uniform sampler2D sky_tex;
-uniform float sky_map_scale;        // texel * scale = radiance x exposure
+uniform sampler2D sky_tex;          // display-space sky map (renderer.c: tone_map of the bake)
 uniform vec3 sun_dir_world;
-uniform vec3 sun_radiance;          // sun irradiance / solid angle x exposure, fp16-safe
+uniform vec3 sun_display;           // tone-mapped sun disc (sky + sun radiance, x exposure)
 varying vec3 v_ray_world;
 
 void main()
 {
     vec3 d = normalize(v_ray_world);
-    vec3 l = texture2D(sky_tex, sky_map_uv(d)).rgb * sky_map_scale;
+    vec3 c = texture2D(sky_tex, sky_map_uv(d)).rgb;
     // Sun disc, angular radius 0.267 deg: cos = 0.999989 is not representable in mediump, so
     // the test compares the squared chord |d - sun|^2 = 2 (1 - cos) with 2.2e-5 instead.
-    vec3 c = d - sun_dir_world;
-    if (dot(c, c) < 2.2e-5 && d.z > 0.0)
-        l += sun_radiance;
-    gl_FragColor = vec4(tone_map(l), 1.0);
+    vec3 e = d - sun_dir_world;
+    if (dot(e, e) < 2.2e-5 && d.z > 0.0)
+        c = sun_display;
+    gl_FragColor = vec4(c, 1.0);
 }

@@ -31,6 +31,7 @@ enum ocean_uniform {
     OU_WORLD_TO_CLIP, OU_UV_OFFSET, OU_INV_SIZE, OU_FRESNEL_TEX, OU_SKY_TEX, OU_SKY_SCALE,
     OU_SKY_SIZE, OU_SUN_DIR, OU_SUN_IRR, OU_SEA_RADIANCE, OU_FOAM_RADIANCE, OU_CONST_SLOPE,
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
+    OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_COUNT
 };
@@ -38,14 +39,13 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
     "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sea_radiance", "foam_radiance",
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
-    "wc_scale", "wc_bias", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
+    "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
     "wc_tex2", "wc_tex3"
 };
 
-enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SKY_SCALE, SU_SUN_DIR, SU_SUN_RADIANCE,
-                   SU_COUNT };
+enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_DIR, SU_SUN_DISPLAY, SU_COUNT };
 static const char *const sky_uniform_names[SU_COUNT] = {
-    "clip_to_world_rel", "sky_tex", "sky_map_scale", "sun_dir_world", "sun_radiance"
+    "clip_to_world_rel", "sky_tex", "sun_dir_world", "sun_display"
 };
 
 /* A pattern is dropped from a run of rows once its smallest pixel footprint there exceeds the
@@ -82,6 +82,10 @@ struct renderer {
     struct shader_program ocean[SWELL_MAX_PATTERNS + 1], skyp;   /* ocean[k]: k slots fetched */
     GLint ou[SWELL_MAX_PATTERNS + 1][OU_COUNT], su[SU_COUNT];
     GLuint fresnel_tex, sky_tex, vbo, ibo, quad_vbo;
+    GLuint sky_display_tex;           /* the sky map tone-mapped: background, low quality */
+    GLuint fresnel_sun_tex;           /* low: A Fresnel, R Hu's Phong term for this sun */
+    const struct swell_table *fresnel;
+    uint8_t *scratch;                 /* derived textures are built here */
     struct swell_table fresnel_own;   /* built here only when the tables lack one */
     int nfs;                          /* patterns shaded from textures, largest first */
     int nwc;                          /* leading slots whose whitecaps are fetched (high) */
@@ -149,8 +153,11 @@ void renderer_destroy(struct renderer *r)
     gpu_buffer_destroy(r->gpu, &r->quad_vbo);
     gpu_buffer_destroy(r->gpu, &r->ibo);
     gpu_buffer_destroy(r->gpu, &r->vbo);
+    gpu_texture_destroy(r->gpu, &r->fresnel_sun_tex);
+    gpu_texture_destroy(r->gpu, &r->sky_display_tex);
     gpu_texture_destroy(r->gpu, &r->sky_tex);
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
+    free(r->scratch);
     shader_program_destroy(&r->skyp);
     for (int k = SWELL_MAX_PATTERNS; k >= 0; k--)
         shader_program_destroy(&r->ocean[k]);
@@ -231,6 +238,65 @@ static int upload_chain(GLuint tex, int w, int h, int levels, const uint8_t *dat
     return gpu_check(what, err);
 }
 
+static void update_exposure(struct renderer *r);
+
+/* Reinhard then gamma 2, as tone_map() in common.glsl, of a radiance times the exposure. */
+static float tone_map_1(float x)
+{
+    x = fminf(fmaxf(x, 0.0f), 1.0e4f);
+    return sqrtf(x / (1.0f + x));
+}
+
+static uint8_t unorm8(float x)
+{
+    return (uint8_t)lrintf(255.0f * fminf(fmaxf(x, 0.0f), 1.0f));
+}
+
+/* The sky map in display space, every level (the background pass and the single pass mix
+ * there, as Hu's LDR pass did): texel -> tone_map(exposure x radiance). */
+static int upload_sky_display(struct renderer *r, struct swell_err *err)
+{
+    size_t n = sky_level_offset(&r->sky, r->sky.levels);
+    float k = r->exposure * r->sky.map_scale / 255.0f;
+    for (size_t i = 0; i < n; i++)
+        r->scratch[i] = (i & 3) == 3 ? 255 : unorm8(tone_map_1(k * (float)r->sky.data[i]));
+    return upload_chain(r->sky_display_tex, r->sky.size, r->sky.size, r->sky.levels, r->scratch,
+                        "renderer: display sky upload", err);
+}
+
+/* The sun's largest channel of irradiance at the sea; sun_irr / sun_peak is its colour. */
+static float sun_peak(const struct renderer *r)
+{
+    float m = fmaxf(r->sky.sun_irr[0], fmaxf(r->sky.sun_irr[1], r->sky.sun_irr[2]));
+    return m > 1e-6f ? m : 1e-6f;
+}
+
+/* Low quality's Fresnel texture: A = F as baked (Hu §5.1), R = Hu §5.3's Phong term
+ * max(V_b . L_r, 0)^512 for this sun, V_b the bumped view vector the baked RGB holds and L_r
+ * the sun mirrored in the mean surface (evaluated per texel instead of per pixel). */
+static int upload_fresnel_sun(struct renderer *r, struct swell_err *err)
+{
+    const struct swell_table *fr = r->fresnel;
+    const float *l = r->sky.sun_dir;
+    size_t texels = (size_t)fr->width * fr->height;
+    /* the highlight's radiance, 60 x the sun's irradiance at its peak (x exposure), stored
+     * tone-mapped so the pass only scales it by the sun's colour (sun_display) */
+    float glint = 60.0f * r->exposure * sun_peak(r);
+    for (size_t i = 0; i < texels; i++) {
+        const uint8_t *px = fr->data + 4 * i;
+        double vb[3], d;
+        for (int c = 0; c < 3; c++)
+            vb[c] = fr->bias[c] + fr->scale[c] * px[c] / 255.0;
+        d = fmax(-vb[0] * l[0] - vb[1] * l[1] + vb[2] * l[2], 0.0);
+        r->scratch[4 * i + 0] = unorm8(tone_map_1(glint * (float)pow(d, 512.0)));
+        r->scratch[4 * i + 1] = 0;
+        r->scratch[4 * i + 2] = 0;
+        r->scratch[4 * i + 3] = px[3];
+    }
+    return upload_chain(r->fresnel_sun_tex, fr->width, fr->height, 1, r->scratch,
+                        "renderer: Fresnel-sun upload", err);
+}
+
 static int create_textures(struct renderer *r, struct swell_err *err)
 {
     const struct swell_table *fr = tables_find(r->t, TABLE_FRESNEL, -1);
@@ -240,17 +306,37 @@ static int create_textures(struct renderer *r, struct swell_err *err)
             return rc;
         fr = &r->fresnel_own;
     }
-    if ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
-                                 "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
-        (rc = upload_chain(r->fresnel_tex, fr->width, fr->height, 1, fr->data,
-                           "renderer: Fresnel upload", err)))
+    if (r->d.quality == QUALITY_HIGH &&
+        ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
+                                  "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
+         (rc = upload_chain(r->fresnel_tex, fr->width, fr->height, 1, fr->data,
+                            "renderer: Fresnel upload", err))))
         return rc;
-    if ((rc = sky_bake(r->d.sun_elev_deg, r->d.sun_azim_deg, SKY_MAP_SIZE, &r->sky, err)) ||
-        (rc = gpu_texture_create(r->gpu, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
-                                 "renderer: sky map", &r->sky_tex, err)) ||
-        (rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, r->sky.data,
-                           "renderer: sky upload", err)))
+    r->fresnel = fr;
+    if ((rc = sky_bake(r->d.sun_elev_deg, r->d.sun_azim_deg, SKY_MAP_SIZE, &r->sky, err)))
         return rc;
+    size_t scratch = sky_level_offset(&r->sky, r->sky.levels);
+    if (scratch < 4 * (size_t)fr->width * fr->height)
+        scratch = 4 * (size_t)fr->width * fr->height;
+    if (!(r->scratch = malloc(scratch)))
+        return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for derived textures");
+    update_exposure(r);
+    if ((rc = gpu_texture_create(r->gpu, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
+                                 "renderer: display sky map", &r->sky_display_tex, err)) ||
+        (rc = upload_sky_display(r, err)))
+        return rc;
+    if (r->d.quality == QUALITY_HIGH) {
+        if ((rc = gpu_texture_create(r->gpu, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels,
+                                     FORMAT_RGBA8, 0, "renderer: sky map", &r->sky_tex, err)) ||
+            (rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, r->sky.data,
+                               "renderer: sky upload", err)))
+            return rc;
+    } else if ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
+                                        "renderer: Fresnel-sun texture", &r->fresnel_sun_tex,
+                                        err)) ||
+               (rc = upload_fresnel_sun(r, err))) {
+        return rc;
+    }
     for (int s = 0; s < r->nfs; s++) {
         struct fs_slot *sl = &r->slot[s];
         if (!sl->slope || !sl->wc || sl->slope->format != FORMAT_RGBA8 ||
@@ -370,7 +456,6 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)))
         goto fail;
     r->gpu_bytes = r->gpu->bytes - before;
-    update_exposure(r);
     *out = r;
     return 0;
 fail:
@@ -389,9 +474,8 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     int rc = sky_bake(elev_deg, azim_deg, SKY_MAP_SIZE, &fresh, err);
     if (rc)
         return rc;
-    rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, fresh.levels, fresh.data,
-                      "renderer: sky upload", err);
-    if (rc) {
+    if (r->sky_tex && (rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, fresh.levels,
+                                         fresh.data, "renderer: sky upload", err))) {
         sky_destroy(&fresh);
         return rc;
     }
@@ -400,6 +484,9 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     r->d.sun_elev_deg = elev_deg;
     r->d.sun_azim_deg = azim_deg;
     update_exposure(r);
+    if ((rc = upload_sky_display(r, err)) ||
+        (r->fresnel_sun_tex && (rc = upload_fresnel_sun(r, err))))
+        return rc;
     return 0;
 }
 
@@ -476,16 +563,15 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
     glEnable(GL_SCISSOR_TEST);
     glScissor(0, y0, width, height - y0);
     /* The sun disc: E_sun over its solid angle (6.8e-5 sr), clamped to stay fp16-finite. */
-    float sun_rad[3];
+    float sun_disp[3];
     for (int c = 0; c < 3; c++)
-        sun_rad[c] = fminf(r->exposure * fminf(r->sky.sun_irr[c] / 6.8e-5f, 3.0e4f), 3.0e4f);
+        sun_disp[c] = tone_map_1(r->exposure * r->sky.sun_irr[c] / 6.8e-5f);
     glm_mat4_inv(world_to_clip, inv);
     glUseProgram(r->skyp.program);
     glUniformMatrix4fv(r->su[SU_CLIP_TO_WORLD], 1, GL_FALSE, (const GLfloat *)inv);
-    bind_tex(UNIT_SKY, r->sky_tex, r->su[SU_SKY_TEX]);
-    glUniform1f(r->su[SU_SKY_SCALE], r->exposure * r->sky.map_scale);
+    bind_tex(UNIT_SKY, r->sky_display_tex, r->su[SU_SKY_TEX]);
     glUniform3fv(r->su[SU_SUN_DIR], 1, r->sky.sun_dir);
-    glUniform3fv(r->su[SU_SUN_RADIANCE], 1, sun_rad);
+    glUniform3fv(r->su[SU_SUN_DISPLAY], 1, sun_disp);
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
@@ -531,11 +617,6 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
             ck[1] += sl->top_k[1];
             ck[2] *= sl->top_k[2];
         }
-        if (r->d.quality != QUALITY_HIGH) {
-            /* the single pass adds the fetched slots' slope biases once, here */
-            cs[0] += sb[s][0];
-            cs[1] += sb[s][1];
-        }
     }
     /* Radiances arrive scaled by the exposure (tone_map in common.glsl takes them so). */
     for (int c = 0; c < 3; c++) {
@@ -563,6 +644,32 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
     glUniform3fv(u[OU_FOAM_RADIANCE], 1, foam);
     glUniform2fv(u[OU_UNRESOLVED], 1, unres);
     glUniform1f(u[OU_EPSILON], r->t->whitecap_epsilon);
+    if (r->d.quality != QUALITY_HIGH) {
+        /* Single pass (ocean.vert): linearised about the slots' mean slope, with a step of
+         * the fetched slots' slope deviation; const_slope.zw: their biases minus means. */
+        float lin[3] = { 0.0f, 0.0f, 0.0f }, var = 0.0f, dev[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+        float sea_d[3], sun_d[3], peak = sun_peak(r);
+        for (int s = 0; s < r->nfs; s++) {
+            lin[0] += r->slot[s].top_slope[0];
+            lin[1] += r->slot[s].top_slope[1];
+            if (s < k) {
+                var += fmaxf(r->slot[s].top_slope[2], r->slot[s].top_slope[3]);
+                dev[2] += sb[s][0] - r->slot[s].top_slope[0];
+                dev[3] += sb[s][1] - r->slot[s].top_slope[1];
+            }
+        }
+        lin[2] = fmaxf(sqrtf(var), 0.01f);
+        for (int c = 0; c < 3; c++) {
+            sea_d[c] = tone_map_1(sea[c]);
+            sun_d[c] = r->sky.sun_irr[c] / peak;
+        }
+        glUniform3fv(u[OU_LIN_S0], 1, lin);
+        glUniform4fv(u[OU_CONST_SLOPE], 1, dev);
+        glUniform3fv(u[OU_SEA_DISPLAY], 1, sea_d);
+        glUniform3fv(u[OU_SUN_DISPLAY], 1, sun_d);
+        bind_tex(UNIT_FRESNEL, r->fresnel_sun_tex, u[OU_FRESNEL_TEX]);
+        bind_tex(UNIT_SKY, r->sky_display_tex, u[OU_SKY_TEX]);
+    }
 }
 
 /* Slots fetched for a row whose nearest vertex is at squared horizontal distance d2: those whose
