@@ -3,13 +3,13 @@
 // camera-relative; texture coordinates are a per-pattern offset wrapped on the CPU in double
 // plus the camera-relative rest position over the patch size, so they stay small.
 //
-// Low quality (Hu 2006 single pass) is linearised here in the fine-scale slope: everything the
-// pass looks up depends on the pixel only through its slope s = s0 + ds, so this stage
-// evaluates the two lookup coordinates (Hu §5.1's Fresnel texture at the bumped view vector,
-// Bruneton §5.2's sky map at the reflected ray) at the vertex's mean slope s0 and their
-// central differences over +-h (h: the fetched patterns' slope deviation), and the fragment
-// stage only adds d(uv)/ds ds: two multiply-adds instead of two normalisations, a reflection
-// and a stereographic division per pixel, in mediump.
+// Shading is linearised here in the fine-scale slope: the two lookups of both passes depend on
+// the pixel only through its slope s = s0 + ds, so this stage evaluates their coordinates (Hu
+// §5.1's Fresnel texture at the bumped view vector, Bruneton §5.2's sky map at the reflected
+// ray) at the vertex's mean slope s0 and their central differences over +-h (h: the fetched
+// patterns' slope deviation), and the fragment stage only adds d(uv)/ds ds: two multiply-adds
+// instead of two normalisations, a reflection and a stereographic division per pixel in
+// mediump. High quality also moves the slowly varying factors of the Ross BRDF here.
 #include "common.glsl"
 
 attribute vec3 a_pos;       // displaced, camera-relative, m
@@ -21,15 +21,20 @@ uniform mat4 world_to_clip;             // camera-relative world -> clip
 uniform vec2 pattern_uv_offset[4];      // per fragment-shader pattern slot
 uniform float pattern_inv_size[4];      // 1 / L_i, 1/m
 
-#ifdef QUALITY_HIGH
-varying vec3 v_view_dir;    // unit vector surface -> camera
-varying vec4 v_geo_slope;
-varying vec3 v_geo_k;
-#else
 uniform vec3 lin_s0;        // xy: mean slope of every fragment pattern slot; z: step h
 varying vec4 v_lin;         // Fresnel-texture uv, sky-map uv at s0
 varying vec4 v_lin_dx;      // their derivatives in s.x ...
 varying vec4 v_lin_dy;      // ... and s.y
+#ifdef QUALITY_HIGH
+uniform vec3 sun_dir_world;
+uniform float sky_map_size;             // texels
+uniform vec4 const_slope;               // slots not fetched: -, -, slope variance xy
+uniform vec3 const_k;                   // ...their k mean, k variance, foam clear fraction
+uniform vec2 unresolved_var;            // slope variance below every table (Bruneton eq. 4)
+uniform vec2 total_var;                 // every pattern's slope variance + unresolved_var
+varying vec4 v_sun;
+varying vec4 v_base;
+varying vec2 v_extra;
 #endif
 #if FS_PATTERNS > 0
 varying vec2 v_uv0;
@@ -44,33 +49,69 @@ varying vec2 v_uv2;
 varying vec2 v_uv3;
 #endif
 
-#ifndef QUALITY_HIGH
-// The single pass's two lookups for view v and sea slope s: Hu §5.1 (the view vector bumped by
-// the normal's tilt, kept in the unit disc the texture covers) and the reflected sky (normals
-// facing away from the viewer reflected first, Bruneton §3.2).
-vec4 lookups(vec3 v, vec2 s)
+// The two lookups for view v and sea slope s: Hu §5.1's Fresnel texture at the view vector
+// bumped by the normal's tilt (kept in the unit disc the texture covers) and the sky map at the
+// reflected ray; normals facing away from the viewer are reflected first (Bruneton §3.2).
+vec3 facing_normal(vec3 v, vec2 s)
 {
     vec3 n = vec3(-s, 1.0);
-    n = normalize(n - 2.0 * min(dot(n, v), 0.0) * v);
+    return normalize(n - 2.0 * min(dot(n, v), 0.0) * v);
+}
+
+vec4 lookups(vec3 v, vec2 s)
+{
+    vec3 n = facing_normal(v, s);
     vec2 fv = v.xy - n.xy;
     fv *= min(1.0, 0.999 * inversesqrt(max(dot(fv, fv), 1e-6)));
     return vec4(vec2(0.5) + 0.5 * fv, sky_map_uv(reflect(-v, n)));
+}
+
+#ifdef QUALITY_HIGH
+// Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
+// Lambda(a) = (e^{-a^2} / (a sqrt(pi)) - erfc(a)) / 2, a = 1 / (sqrt(2) sigma tan theta), by the
+// rational fit of Walter et al. 2007 (eq. 27, the same Gaussian/Beckmann Lambda; relative error
+// below 0.35 % for the shadowing term 1 / (1 + Lambda)).
+float ross_lambda(float cos_t, float var)
+{
+    float c = clamp(cos_t, 0.01, 0.9999);
+    float a = c / sqrt((1.0 - c * c) * 2.0 * var);
+    if (a >= 1.6)
+        return 0.0;
+    return (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
 }
 #endif
 
 void main()
 {
     vec3 v = normalize(-a_pos);
-#ifdef QUALITY_HIGH
-    v_view_dir = v;
-    v_geo_slope = a_geo_slope;
-    v_geo_k = a_geo_k;
-#else
     vec2 s0 = a_geo_slope.xy + lin_s0.xy;
     float h = lin_s0.z;
     v_lin = lookups(v, s0);
     v_lin_dx = (lookups(v, s0 + vec2(h, 0.0)) - lookups(v, s0 - vec2(h, 0.0))) / (2.0 * h);
     v_lin_dy = (lookups(v, s0 + vec2(0.0, h)) - lookups(v, s0 - vec2(0.0, h))) / (2.0 * h);
+#ifdef QUALITY_HIGH
+    // Ross BRDF (Bruneton eq. 15) = p(zeta_h) F(v.h) / (4 cos_v cos^4 theta_h (1 + L(v) + L(l))):
+    // the slope density p is the pixel's (ocean.frag); the rest varies slowly and is evaluated
+    // here at the vertex's mean normal, the shadowing with the sea's whole slope variance.
+    vec3 l = sun_dir_world;
+    vec3 n = facing_normal(v, s0);
+    vec3 hv = normalize(v + l);
+    vec3 tx = normalize(vec3(n.z, 0.0, -n.x));
+    vec3 ty = cross(n, tx);
+    vec2 vt = vec2(dot(v, tx), dot(v, ty));
+    float wx = dot(vt, vt) > 1e-6 ? vt.x * vt.x / dot(vt, vt) : 0.5;   // eq. 25's weights
+    float cos_v = max(dot(v, n), 0.01), cos_l = dot(l, n);
+    float hn = max(dot(hv, n), 0.05);
+    float var_v = mix(total_var.y, total_var.x, wx) + dot(a_geo_slope.zw, vec2(wx, 1.0 - wx));
+    float c5 = 1.0 - clamp(dot(v, hv), 0.0, 1.0);
+    float fs = 0.02 + 0.98 * c5 * c5 * c5 * c5 * c5;   // Schlick, as in eq. 15
+    float shadow = 1.0 + ross_lambda(cos_v, var_v) + ross_lambda(cos_l, var_v);
+    float ross = cos_l > 0.0 ? fs / (8.0 * PI * hn * hn * hn * hn * cos_v * shadow) : 0.0;
+    v_sun = vec4(-hv.xy / max(hv.z, 0.05) - s0, ross, wx);
+    v_base = vec4(a_geo_slope.zw + const_slope.zw + unresolved_var, a_geo_k.xy + const_k.xy);
+    // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
+    vec3 r = reflect(-v, n);
+    v_extra = vec2((1.0 - a_geo_k.z) * const_k.z, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))));
 #endif
 #if FS_PATTERNS > 0
     v_uv0 = pattern_uv_offset[0] + a_rest * pattern_inv_size[0];

@@ -31,7 +31,7 @@ enum ocean_uniform {
     OU_WORLD_TO_CLIP, OU_UV_OFFSET, OU_INV_SIZE, OU_FRESNEL_TEX, OU_SKY_TEX, OU_SKY_SCALE,
     OU_SKY_SIZE, OU_SUN_DIR, OU_SUN_IRR, OU_SEA_RADIANCE, OU_FOAM_RADIANCE, OU_CONST_SLOPE,
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
-    OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY,
+    OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY, OU_DS_OFFSET, OU_TOTAL_VAR,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_COUNT
 };
@@ -39,7 +39,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
     "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sea_radiance", "foam_radiance",
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
-    "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
+    "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
     "wc_tex2", "wc_tex3"
 };
 
@@ -644,27 +644,33 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
     glUniform3fv(u[OU_FOAM_RADIANCE], 1, foam);
     glUniform2fv(u[OU_UNRESOLVED], 1, unres);
     glUniform1f(u[OU_EPSILON], r->t->whitecap_epsilon);
-    if (r->d.quality != QUALITY_HIGH) {
-        /* Single pass (ocean.vert): linearised about the slots' mean slope, with a step of
-         * the fetched slots' slope deviation; const_slope.zw: their biases minus means. */
-        float lin[3] = { 0.0f, 0.0f, 0.0f }, var = 0.0f, dev[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-        float sea_d[3], sun_d[3], peak = sun_peak(r);
-        for (int s = 0; s < r->nfs; s++) {
-            lin[0] += r->slot[s].top_slope[0];
-            lin[1] += r->slot[s].top_slope[1];
-            if (s < k) {
-                var += fmaxf(r->slot[s].top_slope[2], r->slot[s].top_slope[3]);
-                dev[2] += sb[s][0] - r->slot[s].top_slope[0];
-                dev[3] += sb[s][1] - r->slot[s].top_slope[1];
-            }
+    /* Both passes are linearised about the slots' mean slope (ocean.vert) with a step of the
+     * fetched slots' slope deviation; the pixel's ds = ds_offset + its fetched slopes. */
+    float lin[3] = { 0.0f, 0.0f, 0.0f }, var = 0.0f, dso[2] = { 0.0f, 0.0f };
+    float tot[2] = { unres[0], unres[1] };
+    for (int s = 0; s < r->nfs; s++) {
+        const float *m = r->slot[s].top_slope;
+        lin[0] += m[0];
+        lin[1] += m[1];
+        tot[0] += m[2];
+        tot[1] += m[3];
+        if (s < k) {
+            var += fmaxf(m[2], m[3]);
+            /* high adds dequantised slopes, low only scale x texel: it carries the biases */
+            dso[0] += (r->d.quality == QUALITY_HIGH ? 0.0f : sb[s][0]) - m[0];
+            dso[1] += (r->d.quality == QUALITY_HIGH ? 0.0f : sb[s][1]) - m[1];
         }
-        lin[2] = fmaxf(sqrtf(var), 0.01f);
+    }
+    lin[2] = fmaxf(sqrtf(var), 0.01f);
+    glUniform3fv(u[OU_LIN_S0], 1, lin);
+    glUniform2fv(u[OU_DS_OFFSET], 1, dso);
+    glUniform2fv(u[OU_TOTAL_VAR], 1, tot);
+    if (r->d.quality != QUALITY_HIGH) {
+        float sea_d[3], sun_d[3], peak = sun_peak(r);
         for (int c = 0; c < 3; c++) {
             sea_d[c] = tone_map_1(sea[c]);
             sun_d[c] = r->sky.sun_irr[c] / peak;
         }
-        glUniform3fv(u[OU_LIN_S0], 1, lin);
-        glUniform4fv(u[OU_CONST_SLOPE], 1, dev);
         glUniform3fv(u[OU_SEA_DISPLAY], 1, sea_d);
         glUniform3fv(u[OU_SUN_DISPLAY], 1, sun_d);
         bind_tex(UNIT_FRESNEL, r->fresnel_sun_tex, u[OU_FRESNEL_TEX]);
