@@ -22,6 +22,7 @@ uniform vec4 slope_scale[4];        // RGBA8 dequantisation per fragment pattern
 uniform vec4 slope_bias[4];
 #ifdef QUALITY_HIGH
 uniform float sky_map_scale;
+uniform float sky_map_inv_size;     // 1 / texels
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
@@ -137,10 +138,21 @@ void main()
     // capped where the tone map is white anyway: no fp16 infinity reaches the mix below
     vec3 sun = min(sun_irr * min(p * v_sun.z, 3.0e4), vec3(1.0e4));
 
-    // Sky: the filtered lookup of eq. 27 approximated by a LOD bias equal to the filter's
-    // footprint 2 sigma du/dzeta in texels: log2(sigma) + the vertex's log2(2 size du/dzeta).
-    float bias = max(0.5 * log2(max(var.x, var.y)) + v_extra.y, 0.0);
-    vec3 sky = texture2D(sky_tex, uv.zw, bias).rgb * sky_map_scale;
+    // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
+    // log2 of it is log2(sigma) + the vertex's log2(2 size du/dzeta).
+    float foot = 0.5 * log2(max(var.x, var.y)) + v_extra.y;
+#if defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
+    // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
+    // widened in each direction to at least the filter's (a max, where a bias multiplies).
+    vec2 gx = dFdx(uv.zw), gy = dFdy(uv.zw);
+    float f = exp2(foot) * sky_map_inv_size;
+    gx *= max(1.0, f * inversesqrt(max(dot(gx, gx), 1e-8)));
+    gy *= max(1.0, f * inversesqrt(max(dot(gy, gy), 1e-8)));
+    vec3 sky = texture2DGradEXT(sky_tex, uv.zw, gx, gy).rgb * sky_map_scale;
+#else
+    // gles2-min: no gradients; a LOD bias equal to the footprint on top of the pixel's LOD.
+    vec3 sky = texture2D(sky_tex, uv.zw, max(foot, 0.0)).rgb * sky_map_scale;
+#endif
 
     // Refracted light, eq. 28.
     vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_radiance;

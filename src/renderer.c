@@ -31,7 +31,7 @@ enum ocean_uniform {
     OU_WORLD_TO_CLIP, OU_UV_OFFSET, OU_INV_SIZE, OU_FRESNEL_TEX, OU_SKY_TEX, OU_SKY_SCALE,
     OU_SKY_SIZE, OU_SUN_DIR, OU_SUN_IRR, OU_SEA_RADIANCE, OU_FOAM_RADIANCE, OU_CONST_SLOPE,
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
-    OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY, OU_DS_OFFSET, OU_TOTAL_VAR,
+    OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_COUNT
 };
@@ -39,7 +39,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
     "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sea_radiance", "foam_radiance",
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
-    "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
+    "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var", "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
     "wc_tex2", "wc_tex3"
 };
 
@@ -638,6 +638,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
     bind_tex(UNIT_SKY, r->sky_tex, u[OU_SKY_TEX]);
     glUniform1f(u[OU_SKY_SCALE], e * r->sky.map_scale);
     glUniform1f(u[OU_SKY_SIZE], (float)r->sky.size);
+    glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
     glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
     glUniform3fv(u[OU_SUN_IRR], 1, sun);
     glUniform3fv(u[OU_SEA_RADIANCE], 1, sea);
@@ -805,7 +806,11 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",
         r->d.quality == QUALITY_HIGH
-            ? "high: Ross BRDF sun (eq. 15), sky map LOD-biased (eq. 27), effective Fresnel "
+            ? shader_has_gradients(&r->gpu->caps)
+              ? "high: Ross BRDF sun (eq. 15), sky map filtered with explicit gradients (eq. 27, "
+                "textureGrad), effective Fresnel (eq. 26) on Hu's Fresnel texture, "
+                "refraction (eq. 28), whitecaps (Dupuy eq. 6)"
+              : "high: Ross BRDF sun (eq. 15), sky map LOD-biased (eq. 27), effective Fresnel "
               "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"
             : "low: Hu 2006 single pass (Fresnel texture, bumped sky, Phong sun)");
     (void)n;

@@ -257,23 +257,48 @@ static const char *const tier_macros[TIER_COUNT] = {
     "SWELL_TIER_GLES2_MIN", "SWELL_TIER_GLES2_EXT", "SWELL_TIER_GLES3"
 };
 
+int shader_is_es3(const struct gpu_caps *c)
+{
+    return c->tier == TIER_GLES3 && c->glsl300;
+}
+
+int shader_has_gradients(const struct gpu_caps *c)
+{
+    return shader_is_es3(c) ||
+           (c->glsl100_texture_lod && c->texture_lod && c->glsl100_derivatives && c->derivatives);
+}
+
 static int emit_header(struct assembly *a, const struct shader_desc *d, GLenum stage,
                        struct swell_err *err)
 {
     const struct gpu_caps *c = d->caps;
     int fragment = stage == GL_FRAGMENT_SHADER;
     struct membuf *b = &a->out;
-    membuf_add(b, "#version 100\n", 13);
-    /* GLSL ES 1.00 §3.4: #extension before any non-preprocessor token, so before precision. */
-    if (fragment && c->glsl100_derivatives && c->derivatives)
-        sb_printf(b, "#extension GL_OES_standard_derivatives : enable\n");
-    if (fragment && c->glsl100_texture_lod && c->texture_lod)
-        sb_printf(b, "#extension GL_EXT_shader_texture_lod : enable\n");
     int tier = c->tier >= 0 && c->tier < TIER_COUNT ? c->tier : TIER_GLES2_MIN;
+    /* The gles3 tier compiles the same sources as GLSL ES 3.00, through the GLSL ES 1.00 names
+     * mapped onto 3.00's (as WebGL 2 ports do): derivatives and textureGrad are core there,
+     * while GLES 3 drivers need not offer the 1.00 extensions (llvmpipe does not). */
+    int es3 = shader_is_es3(c);
+    if (es3) {
+        sb_printf(b, "#version 300 es\n#define texture2D texture\n#define texture2DLod textureLod\n"
+                     "#define texture2DGradEXT textureGrad\n");
+        if (fragment)
+            sb_printf(b, "#define varying in\nout highp vec4 swell_frag_colour;\n"
+                         "#define gl_FragColor swell_frag_colour\n");
+        else
+            sb_printf(b, "#define attribute in\n#define varying out\n");
+    } else {
+        membuf_add(b, "#version 100\n", 13);
+    }
+    /* GLSL ES 1.00 §3.4: #extension before any non-preprocessor token, so before precision. */
+    if (!es3 && fragment && c->glsl100_derivatives && c->derivatives)
+        sb_printf(b, "#extension GL_OES_standard_derivatives : enable\n");
+    if (!es3 && fragment && c->glsl100_texture_lod && c->texture_lod)
+        sb_printf(b, "#extension GL_EXT_shader_texture_lod : enable\n");
     sb_printf(b, "#define %s 1\n", tier_macros[tier]);
-    if (fragment ? (c->glsl100_derivatives && c->derivatives) : 0)
+    if (fragment ? (es3 || (c->glsl100_derivatives && c->derivatives)) : 0)
         sb_printf(b, "#define SWELL_HAS_DERIVATIVES 1\n");
-    if (fragment ? (c->glsl100_texture_lod && c->texture_lod) : 0)
+    if (fragment ? (es3 || (c->glsl100_texture_lod && c->texture_lod)) : 0)
         sb_printf(b, "#define SWELL_HAS_TEXTURE_LOD 1\n");
     if (c->vertex_texture_units > 0)
         sb_printf(b, "#define SWELL_HAS_VTF 1\n");

@@ -51,6 +51,12 @@ struct shader_program {
     GLuint program;                  /* 0 = none */
 };
 
+/* The gles3 tier compiles as GLSL ES 3.00 (names of 1.00 mapped); fragment shaders then have
+ * SWELL_HAS_DERIVATIVES and SWELL_HAS_TEXTURE_LOD (texture2DGradEXT), as with both GLES 2
+ * extensions. */
+int  shader_is_es3(const struct gpu_caps *c);
+int  shader_has_gradients(const struct gpu_caps *c);
+
 /* Build and link; on failure `out->program` is 0 and err says file:line and the driver log. */
 int  shader_program_build(const struct shader_desc *d, struct shader_program *out,
                           struct swell_err *err);

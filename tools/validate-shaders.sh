@@ -59,8 +59,24 @@ emit() {
 # feature of TIER (gles2-ext and gles3 assume both extensions present, as on Mesa).
 header() {
     local stage=$1 tier=$2 quality=$3
-    echo "#version 100"
-    if [ "$stage" = frag ] && [ "$tier" != GLES2_MIN ]; then
+    if [ "$tier" = GLES3 ]; then
+        # GLSL ES 3.00 with the 1.00 names mapped (src/shader.c emit_header)
+        echo "#version 300 es"
+        echo "#define texture2D texture"
+        echo "#define texture2DLod textureLod"
+        echo "#define texture2DGradEXT textureGrad"
+        if [ "$stage" = frag ]; then
+            echo "#define varying in"
+            echo "out highp vec4 swell_frag_colour;"
+            echo "#define gl_FragColor swell_frag_colour"
+        else
+            echo "#define attribute in"
+            echo "#define varying out"
+        fi
+    else
+        echo "#version 100"
+    fi
+    if [ "$stage" = frag ] && [ "$tier" = GLES2_EXT ]; then
         echo "#extension GL_OES_standard_derivatives : enable"
         echo "#extension GL_EXT_shader_texture_lod : enable"
     fi
