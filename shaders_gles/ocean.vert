@@ -1,5 +1,5 @@
 // ocean.vert - CPU-displaced sea vertices (gles2-min: no vertex texture fetch). Positions are
-// validate: FS_PATTERNS=0 | FS_PATTERNS=1 | FS_PATTERNS=2 | FS_PATTERNS=3 | FS_PATTERNS=4
+// validate: FS_PATTERNS=0 | FS_PATTERNS=1 | FS_PATTERNS=2 | FS_PATTERNS=3 | FS_PATTERNS=4 | FS_PATTERNS=4 VTF_PATTERNS=4 | FS_PATTERNS=2 VTF_PATTERNS=3 | FS_PATTERNS=1 VTF_PATTERNS=1
 // camera-relative; texture coordinates are a per-pattern offset wrapped on the CPU in double
 // plus the camera-relative rest position over the patch size, so they stay small.
 //
@@ -12,10 +12,63 @@
 // mediump. High quality also moves the slowly varying factors of the Ross BRDF here.
 #include "common.glsl"
 
+#ifdef VTF_PATTERNS
+// Tiers with vertex texture fetch: the projected grid (Bruneton 2010 §3) is built here from a
+// static grid of parameters, and displaced by the streamed displacement tables with the eq. 2
+// filter weights, as grid.c does on the CPU for gles2-min (same formulas, see there).
+attribute vec2 a_grid;                  // (i, j) / (w - 1, h - 1)
+uniform vec3 grid_fwd;                  // camera basis, world
+uniform vec3 grid_right;
+uniform vec3 grid_up;
+uniform vec4 grid_frame;                // tan(fov_x / 2), tan(fov_y / 2), altitude, ray plane
+uniform vec4 grid_range;                // NDC x of the first and last column, y of the first
+                                        // (horizon) and last row
+uniform vec3 grid_step;                 // one cell in a_grid units (x, y); far distance, m
+uniform vec4 disp_scale[4];             // RGBA8 dequantisation of each pattern's table; w: the
+uniform vec4 disp_bias[4];              // blend weight of loop frame b (frames a, b bound)
+uniform vec4 disp_pattern[4];           // uv offset xy, 1 / L_i, eq. 2 wavelength, m
+uniform sampler2D disp_a0;
+uniform sampler2D disp_b0;
+#if VTF_PATTERNS > 1
+uniform sampler2D disp_a1;
+uniform sampler2D disp_b1;
+#endif
+#if VTF_PATTERNS > 2
+uniform sampler2D disp_a2;
+uniform sampler2D disp_b2;
+#endif
+#if VTF_PATTERNS > 3
+uniform sampler2D disp_a3;
+uniform sampler2D disp_b3;
+#endif
+
+// The sea-plane point of grid parameter g: its ray meets the plane raised to the highest crest
+// (rest points stay camera-relative), rays at or above the horizon end at the far distance.
+vec2 grid_rest(vec2 g)
+{
+    float sx = mix(grid_range.x, grid_range.y, g.x), sy = mix(grid_range.z, grid_range.w, g.y);
+    vec3 d = grid_fwd + sx * grid_frame.x * grid_right + sy * grid_frame.y * grid_up;
+    float dxy = length(d.xy);
+    float t = -d.z * grid_step.z > grid_frame.w * dxy ? grid_frame.w / -d.z
+                                                      : grid_step.z / max(dxy, 1e-12);
+    return t * d.xy;
+}
+
+// Loop frames a and b blended here in float (no CPU blend, no requantisation), weighted by
+// Bruneton eq. 2: 0 for waves shorter than 2 cells, 1 from 4 cells up (grid.c).
+vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
+{
+    float u = clamp((disp_pattern[i].w / foot - 2.0) / 2.0, 0.0, 1.0);
+    vec2 uv = disp_pattern[i].xy + rest * disp_pattern[i].z;
+    vec3 t = mix(texture2DLod(a, uv, 0.0).xyz, texture2DLod(b, uv, 0.0).xyz, disp_scale[i].w);
+    return u * u * (3.0 - 2.0 * u) * (disp_bias[i].xyz + disp_scale[i].xyz * t);
+}
+#else
 attribute vec3 a_pos;       // displaced, camera-relative, m
 attribute vec2 a_rest;      // rest position on the sea plane, camera-relative, m
 attribute vec4 a_geo_slope; // CPU patterns: mean slope xy, resolved slope variance xy
 attribute vec3 a_geo_k;     // CPU patterns: Dupuy k mean, k variance, foam opacity
+#endif
 
 uniform mat4 world_to_clip;             // camera-relative world -> clip
 uniform vec2 pattern_uv_offset[4];      // per fragment-shader pattern slot
@@ -83,6 +136,26 @@ float ross_lambda(float cos_t, float var)
 
 void main()
 {
+#ifdef VTF_PATTERNS
+    vec2 a_rest = grid_rest(a_grid);
+    // footprint: the larger side of the cell towards the next column and row (grid.c)
+    vec2 ex = abs(grid_rest(a_grid + vec2(grid_step.x, 0.0)) - a_rest);
+    vec2 ey = abs(grid_rest(a_grid + vec2(0.0, grid_step.y)) - a_rest);
+    float foot = max(max(ex.x, ex.y), max(ey.x, ey.y));
+    vec3 disp = displacement(disp_a0, disp_b0, 0, a_rest, foot);
+#if VTF_PATTERNS > 1
+    disp += displacement(disp_a1, disp_b1, 1, a_rest, foot);
+#endif
+#if VTF_PATTERNS > 2
+    disp += displacement(disp_a2, disp_b2, 2, a_rest, foot);
+#endif
+#if VTF_PATTERNS > 3
+    disp += displacement(disp_a3, disp_b3, 3, a_rest, foot);
+#endif
+    vec3 a_pos = vec3(a_rest + disp.xy, disp.z - grid_frame.z);
+    vec4 a_geo_slope = vec4(0.0);   // no CPU patterns on these tiers
+    vec3 a_geo_k = vec3(0.0);
+#endif
     vec3 v = normalize(-a_pos);
     vec2 s0 = a_geo_slope.xy + lin_s0.xy;
     float h = lin_s0.z;

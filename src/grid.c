@@ -534,3 +534,51 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
     row_distances(g, verts);
     return n;
 }
+
+/* The projected grid's frame for a camera, as update_projected() builds it (tiers with vertex
+ * texture fetch build the vertices in ocean.vert from it). Also fills the rows' distances from
+ * each row's nearest ray (the centre column's: right is horizontal and perpendicular to the
+ * view's azimuth, so along a row of constant NDC y the horizontal distance is least at x = 0).
+ * Returns 0 when no sea is in view. */
+int grid_projection(struct grid *g, const struct camera *cam, float aspect,
+                    struct grid_projection *p)
+{
+    double alt = cam->pos[2] > 0.5 ? cam->pos[2] : 0.5;
+    double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
+    memset(p, 0, sizeof(*p));
+    p->alt = alt;
+    p->alt_ray = fmax(alt - g->crest_m, 0.5 * alt);
+    p->ty = tan(0.5 * fov);
+    p->tx = p->ty * aspect;
+    p->dmax = far_distance(cam, aspect);
+    p->margin = GRID_MARGIN + fmin((g->chop_m + g->crest_m) / p->alt_ray / p->ty, 1.5);
+    p->top = 1.0 + p->margin;
+    p->bot = -1.0 - p->margin;
+    basis(cam, p->fwd, p->right, p->up);
+    if (p->up[2] * p->ty > 1e-9) {
+        double hz = -p->fwd[2] / (p->ty * p->up[2]);
+        if (hz < p->top)
+            p->top = hz;
+    }
+    if (g->kind != 0 || p->top <= p->bot)
+        return 0;
+    for (int r = 0; r < g->rows; r++) {
+        /* row r spans grid rows r (farther) and r + 1 (nearer) */
+        double sy = p->top + (p->bot - p->top) * (r + 1) / (g->h - 1), d[3], dxy, t;
+        for (int c = 0; c < 3; c++)
+            d[c] = p->fwd[c] + sy * p->ty * p->up[c];
+        dxy = sqrt(d[0] * d[0] + d[1] * d[1]);
+        t = -d[2] * p->dmax > p->alt_ray * dxy ? p->alt_ray / -d[2] : p->dmax / fmax(dxy, 1e-12);
+        g->row_foot[r] = (float)(t * t * dxy * dxy);
+    }
+    return g->nidx;
+}
+
+/* One wavelength stands for pattern i's band in eq. 2: the geometric mean of its [k_min, k_max],
+ * else a quarter of the patch. */
+float grid_band_wavelength(const struct swell_pattern_info *pi)
+{
+    return pi->k_min > 0.0f && pi->k_max > 0.0f
+               ? (float)(2.0 * M_PI / sqrt((double)pi->k_min * pi->k_max))
+               : 0.25f * pi->size_m;
+}

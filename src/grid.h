@@ -52,10 +52,26 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
 int grid_row_count(const struct grid *g);
 void grid_row_span(const struct grid *g, int row, int *first, int *count, float *dist2_min);
 
+/* The projected grid's frame for a camera (grid.c), for building the grid in a vertex shader:
+ * ray(sx, sy) = fwd + sx tx right + sy ty up, NDC sx in [-1 - margin, 1 + margin], sy from top
+ * (the horizon, or above the screen) to bot; rays meet z = -alt_ray, else end at dmax. */
+struct grid_projection {
+    double fwd[3], right[3], up[3];
+    double tx, ty, alt, alt_ray, dmax, margin, top, bot;
+};
+
+/* Fill p for the camera and the rows' distances (grid_row_span) without building vertices.
+ * Returns the number of indices to draw, 0 when no sea is in view (or for patches). */
+int grid_projection(struct grid *g, const struct camera *cam, float aspect,
+                    struct grid_projection *p);
+
 /* Texture-coordinate offset of pattern i for this camera: frac(camera_xy / L_i), wrapped in
  * double so an hour in looks like the first second; uv = offset + rest_xy / L_i. */
 void grid_uv_offset(const struct swell_tables *t, int pattern, const struct camera *cam,
                     float out[2]);
+
+/* The wavelength eq. 2 weighs pattern i's band by (grid.c and ocean.vert's VTF grid). */
+float grid_band_wavelength(const struct swell_pattern_info *pi);
 
 /* Bruneton 2010 eq. 2 filter weight w(a, b, x) = 3 x'^2 - 2 x'^3, x' = clamp((x-a)/(b-a)). */
 float grid_filter_weight(float a, float b, float x);

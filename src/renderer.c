@@ -53,9 +53,21 @@ static const char *const sky_uniform_names[SU_COUNT] = {
  * the footprint estimate from the rows' vertices. */
 #define DROP_FOOTPRINT 1.25f
 
-enum { A_POS = 0, A_REST, A_GEO_SLOPE, A_GEO_K, A_COUNT };
+enum { A_POS = 0, A_REST, A_GEO_SLOPE, A_GEO_K, A_GRID, A_COUNT };
 static const struct shader_attrib ocean_attribs[A_COUNT] = {
-    { "a_pos", A_POS }, { "a_rest", A_REST }, { "a_geo_slope", A_GEO_SLOPE }, { "a_geo_k", A_GEO_K }
+    { "a_pos", A_POS }, { "a_rest", A_REST }, { "a_geo_slope", A_GEO_SLOPE }, { "a_geo_k", A_GEO_K },
+    { "a_grid", A_GRID }
+};
+
+/* Vertex-texture-fetch grid (ocean.vert VTF_PATTERNS): its uniforms, per pattern. */
+enum vtf_uniform {
+    VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_STEP, VU_SCALE, VU_BIAS, VU_PATTERN,
+    VU_A0, VU_B0, VU_A1, VU_B1, VU_A2, VU_B2, VU_A3, VU_B3, VU_COUNT
+};
+static const char *const vtf_uniform_names[VU_COUNT] = {
+    "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_step", "disp_scale",
+    "disp_bias", "disp_pattern", "disp_a0", "disp_b0", "disp_a1", "disp_b1", "disp_a2", "disp_b2",
+    "disp_a3", "disp_b3"
 };
 static const struct shader_attrib sky_attribs[1] = { { "a_ndc", 0 } };
 
@@ -81,6 +93,17 @@ struct renderer {
     struct sky sky;
     struct shader_program ocean[SWELL_MAX_PATTERNS + 1], skyp;   /* ocean[k]: k slots fetched */
     GLint ou[SWELL_MAX_PATTERNS + 1][OU_COUNT], su[SU_COUNT];
+    GLint vu[SWELL_MAX_PATTERNS + 1][VU_COUNT];
+    /* Tiers with vertex texture fetch, projected grid: the grid is built and displaced in
+     * ocean.vert from a static VBO of grid parameters and, per pattern, the two loop frames
+     * the animation is between (uploaded as they are when the frame changes, blended in
+     * float in the vertex shader: no CPU work per vertex or texel). */
+    int vtf;
+    GLuint disp_tex[SWELL_MAX_PATTERNS][2];   /* two loop frames per pattern, blended in VS */
+    int disp_frame[SWELL_MAX_PATTERNS][2];    /* table frame each holds, -1 none */
+    int disp_ab[SWELL_MAX_PATTERNS][2];       /* this frame's a and b: indices into the pair */
+    float disp_w[SWELL_MAX_PATTERNS];
+    struct grid_projection proj;
     GLuint fresnel_tex, sky_tex, vbo, ibo, quad_vbo;
     GLuint sky_display_tex;           /* the sky map tone-mapped: background, low quality */
     GLuint fresnel_sun_tex;           /* low: A Fresnel, R Hu's Phong term for this sun */
@@ -145,6 +168,8 @@ void renderer_destroy(struct renderer *r)
     if (!r)
         return;
     for (int s = SWELL_MAX_PATTERNS - 1; s >= 0; s--) {
+        gpu_texture_destroy(r->gpu, &r->disp_tex[s][1]);
+        gpu_texture_destroy(r->gpu, &r->disp_tex[s][0]);
         gpu_texture_destroy(r->gpu, &r->slot[s].wc_tex);
         gpu_texture_destroy(r->gpu, &r->slot[s].slope_tex);
         free(r->slot[s].wc_b);
@@ -224,6 +249,33 @@ static void assign_patterns(struct renderer *r)
     }
 }
 
+static void bind_tex(int unit, GLuint tex, GLint loc)
+{
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    if (loc >= 0)
+        glUniform1i(loc, unit);
+}
+
+/* Vertex texture fetch pays where the tier has a unit per loop frame for every pattern beside
+ * the fragment shader's, and the geometry is the projected grid (patches stay on the CPU). */
+static int choose_vtf(const struct renderer *r)
+{
+    GLint combined = 0;
+    int n = r->t->patterns;
+    if (r->d.geometry != GEOMETRY_GRID || r->cpu_mask || r->gpu->caps.vertex_texture_units < 2 * n)
+        return 0;
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
+    if (combined < UNIT_PATTERNS + r->nfs + r->nwc + 2 * n)
+        return 0;
+    for (int i = 0; i < n; i++) {
+        const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);
+        if (!d || d->format != FORMAT_RGBA8)
+            return 0;
+    }
+    return 1;
+}
+
 static int upload_chain(GLuint tex, int w, int h, int levels, const uint8_t *data,
                         const char *what, struct swell_err *err)
 {
@@ -297,6 +349,85 @@ static int upload_fresnel_sun(struct renderer *r, struct swell_err *err)
                         "renderer: Fresnel-sun upload", err);
 }
 
+static int create_disp_textures(struct renderer *r, struct swell_err *err)
+{
+    for (int i = 0; i < r->t->patterns; i++) {
+        const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);
+        for (int k = 0; k < 2; k++) {
+            int rc = gpu_texture_create(r->gpu, d->width, d->height, 1, FORMAT_RGBA8, 1,
+                                        "renderer: displacement (vertex shader)",
+                                        &r->disp_tex[i][k], err);
+            if (rc)
+                return rc;
+            r->disp_frame[i][k] = -1;
+        }
+    }
+    return 0;
+}
+
+/* Make the pair of pattern i hold loop frames f0 and f1, uploading only a frame it lacks. */
+static void stream_disp(struct renderer *r, double t_s)
+{
+    for (int i = 0; i < r->t->patterns; i++) {
+        const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);
+        struct stream_phase ph;
+        int want[2], *have = r->disp_frame[i];
+        stream_loop_phase(t_s, tables_pattern_period(r->t, i), r->t->frames, &ph);
+        want[0] = ph.f0 < d->layers ? ph.f0 : 0;
+        want[1] = ph.f1 < d->layers ? ph.f1 : 0;
+        for (int k = 0; k < 2; k++) {
+            int slot = have[0] == want[k] ? 0 : have[1] == want[k] ? 1 : -1;
+            if (slot < 0) {
+                /* replace the one the other wanted frame is not in */
+                slot = (have[0] == want[1 - k]) ? 1 : 0;
+                have[slot] = want[k];
+                upload_chain(r->disp_tex[i][slot], d->width, d->height, 1,
+                             d->data + table_offset(d, 0, want[k]), "renderer: displacement",
+                             NULL);
+            }
+            r->disp_ab[i][k] = slot;
+        }
+        r->disp_w[i] = (float)ph.w / STREAM_W_ONE;
+    }
+}
+
+static void set_vtf_uniforms(struct renderer *r, int k, const struct camera *cam)
+{
+    const GLint *u = r->vu[k];
+    const struct grid_projection *p = &r->proj;
+    float sc[SWELL_MAX_PATTERNS][4] = { { 0 } }, bi[SWELL_MAX_PATTERNS][4] = { { 0 } };
+    float pat[SWELL_MAX_PATTERNS][4] = { { 0 } }, v[3][3];
+    int w = r->d.grid_w, h = r->d.grid_h;
+    for (int c = 0; c < 3; c++) {
+        v[0][c] = (float)p->fwd[c];
+        v[1][c] = (float)p->right[c];
+        v[2][c] = (float)p->up[c];
+    }
+    for (int i = 0; i < r->t->patterns; i++) {
+        const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);
+        const struct swell_pattern_info *pi = &r->t->pattern[i];
+        memcpy(sc[i], d->scale, 3 * sizeof(float));
+        memcpy(bi[i], d->bias, 3 * sizeof(float));
+        sc[i][3] = r->disp_w[i];
+        grid_uv_offset(r->t, i, cam, pat[i]);
+        pat[i][2] = 1.0f / pi->size_m;
+        pat[i][3] = grid_band_wavelength(pi);
+        for (int f = 0; f < 2; f++)
+            bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * i + f,
+                     r->disp_tex[i][r->disp_ab[i][f]], u[VU_A0 + 2 * i + f]);
+    }
+    glUniform3fv(u[VU_FWD], 1, v[0]);
+    glUniform3fv(u[VU_RIGHT], 1, v[1]);
+    glUniform3fv(u[VU_UP], 1, v[2]);
+    glUniform4f(u[VU_FRAME], (float)p->tx, (float)p->ty, (float)p->alt, (float)p->alt_ray);
+    glUniform4f(u[VU_RANGE], (float)(-1.0 - p->margin), (float)(1.0 + p->margin), (float)p->top,
+                (float)p->bot);
+    glUniform3f(u[VU_STEP], 1.0f / (float)(w - 1), 1.0f / (float)(h - 1), (float)p->dmax);
+    glUniform4fv(u[VU_SCALE], SWELL_MAX_PATTERNS, &sc[0][0]);
+    glUniform4fv(u[VU_BIAS], SWELL_MAX_PATTERNS, &bi[0][0]);
+    glUniform4fv(u[VU_PATTERN], SWELL_MAX_PATTERNS, &pat[0][0]);
+}
+
 static int create_textures(struct renderer *r, struct swell_err *err)
 {
     const struct swell_table *fr = tables_find(r->t, TABLE_FRESNEL, -1);
@@ -337,6 +468,8 @@ static int create_textures(struct renderer *r, struct swell_err *err)
                (rc = upload_fresnel_sun(r, err))) {
         return rc;
     }
+    if (r->vtf && (rc = create_disp_textures(r, err)))
+        return rc;
     for (int s = 0; s < r->nfs; s++) {
         struct fs_slot *sl = &r->slot[s];
         if (!sl->slope || !sl->wc || sl->slope->format != FORMAT_RGBA8 ||
@@ -377,11 +510,17 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     od.attribs = ocean_attribs;
     od.attrib_count = A_COUNT;
     for (int k = 0; k <= r->nfs; k++) {
-        snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s", k,
-                 k < r->nwc ? k : r->nwc, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
+        int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s", k,
+                         k < r->nwc ? k : r->nwc,
+                         r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
+        if (r->vtf)
+            snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d", r->t->patterns);
         od.uniform_locations = r->ou[k];
         if ((rc = shader_program_build(&od, &r->ocean[k], err)))
             return rc;
+        for (int v = 0; v < VU_COUNT; v++)
+            r->vu[k][v] = r->vtf ? glGetUniformLocation(r->ocean[k].program, vtf_uniform_names[v])
+                                 : -1;
     }
     sd.vs_file = "sky.vert";
     sd.fs_file = "sky.frag";
@@ -396,13 +535,16 @@ static int build_programs(struct renderer *r, struct swell_err *err)
 static int create_buffers(struct renderer *r, struct swell_err *err)
 {
     static const float quad[8] = { -1.0f, -1.0f, 1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f };
-    size_t vbytes = sizeof(float) * GRID_FLOATS * (size_t)grid_vertex_count(r->grid);
+    /* VTF: a static (i, j) / (w - 1, h - 1) per vertex; else the streamed CPU vertices */
+    size_t vbytes = sizeof(float) * (r->vtf ? 2 : GRID_FLOATS) * (size_t)grid_vertex_count(r->grid);
     size_t ibytes = sizeof(uint16_t) * (size_t)grid_index_count(r->grid);
     int rc;
     if (!(r->verts = calloc(1, vbytes)))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for %zu vertex bytes", vbytes);
-    if ((rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, vbytes, GL_STREAM_DRAW,
-                                "renderer: sea vertices", &r->vbo, err)) ||
+    if ((rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, vbytes,
+                                r->vtf ? GL_STATIC_DRAW : GL_STREAM_DRAW,
+                                r->vtf ? "renderer: sea grid parameters" : "renderer: sea vertices",
+                                &r->vbo, err)) ||
         (rc = gpu_buffer_create(r->gpu, GL_ELEMENT_ARRAY_BUFFER, ibytes, GL_STATIC_DRAW,
                                 "renderer: sea indices", &r->ibo, err)) ||
         (rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, sizeof(quad), GL_STATIC_DRAW,
@@ -412,6 +554,16 @@ static int create_buffers(struct renderer *r, struct swell_err *err)
     glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, (GLsizeiptr)ibytes, grid_indices(r->grid));
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(quad), quad);
+    if (r->vtf) {
+        int w = r->d.grid_w, h = r->d.grid_h;
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) {
+                r->verts[2 * (j * w + i)] = (float)i / (float)(w - 1);
+                r->verts[2 * (j * w + i) + 1] = (float)j / (float)(h - 1);
+            }
+        glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
+    }
     return gpu_check("renderer: buffer upload", err);
 }
 
@@ -447,6 +599,7 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     r->gpu = desc->gpu;
     r->t = desc->tables;
     assign_patterns(r);
+    r->vtf = choose_vtf(r);
     gd.tables = r->t;
     gd.kind = r->d.geometry;
     gd.w = r->d.grid_w;
@@ -537,13 +690,6 @@ static void stream_textures(struct renderer *r, double t_s)
     }
 }
 
-static void bind_tex(int unit, GLuint tex, GLint loc)
-{
-    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    if (loc >= 0)
-        glUniform1i(loc, unit);
-}
 
 /* The sky is drawn only above the horizon (a scissor from just below the horizon's row up):
  * below it the sea covers every pixel, and a full-screen sky pass there was pure overdraw. */
@@ -585,6 +731,8 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
                                mat4 world_to_clip)
 {
     const GLint *u = r->ou[k];
+    if (r->vtf)
+        set_vtf_uniforms(r, k, cam);
     float off[SWELL_MAX_PATTERNS][2] = { { 0 } }, inv[SWELL_MAX_PATTERNS] = { 0 };
     float ss[SWELL_MAX_PATTERNS][4] = { { 0 } }, sb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
@@ -737,7 +885,12 @@ int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int
     camera_view_rel(cam, view);
     camera_projection(cam, aspect, proj);
     glm_mat4_mul(proj, view, world_to_clip);
-    nidx = grid_update(r->grid, cam, aspect, t_s, r->verts);
+    if (r->vtf) {
+        nidx = grid_projection(r->grid, cam, aspect, &r->proj);
+        stream_disp(r, t_s);
+    } else {
+        nidx = grid_update(r->grid, cam, aspect, t_s, r->verts);
+    }
     stream_textures(r, t_s);
 
     glViewport(0, 0, width, height);
@@ -756,17 +909,22 @@ int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int
             glDepthFunc(GL_LEQUAL);
         }
         glBindBuffer(GL_ARRAY_BUFFER, r->vbo);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
-        for (int a = 0; a < A_COUNT; a++)
-            glEnableVertexAttribArray((GLuint)a);
-        glVertexAttribPointer(A_POS, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                              (const void *)(GRID_A_POS * sizeof(float)));
-        glVertexAttribPointer(A_REST, 2, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                              (const void *)(GRID_A_REST * sizeof(float)));
-        glVertexAttribPointer(A_GEO_SLOPE, 4, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                              (const void *)(GRID_A_SLOPE * sizeof(float)));
-        glVertexAttribPointer(A_GEO_K, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                              (const void *)(GRID_A_K * sizeof(float)));
+        if (r->vtf) {
+            glEnableVertexAttribArray(A_GRID);
+            glVertexAttribPointer(A_GRID, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+        } else {
+            glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
+            for (int a = 0; a < A_GRID; a++)
+                glEnableVertexAttribArray((GLuint)a);
+            glVertexAttribPointer(A_POS, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                                  (const void *)(GRID_A_POS * sizeof(float)));
+            glVertexAttribPointer(A_REST, 2, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                                  (const void *)(GRID_A_REST * sizeof(float)));
+            glVertexAttribPointer(A_GEO_SLOPE, 4, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                                  (const void *)(GRID_A_SLOPE * sizeof(float)));
+            glVertexAttribPointer(A_GEO_K, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+                                  (const void *)(GRID_A_K * sizeof(float)));
+        }
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
         draw_runs(r, cam, world_to_clip, height);
         for (int a = 0; a < A_COUNT; a++)
@@ -781,8 +939,8 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
 {
     memset(out, 0, sizeof(*out));
     out->gpu_bytes = r->gpu_bytes;
-    out->cpu_bytes_per_frame = r->stream_bytes +
-        sizeof(float) * GRID_FLOATS * (uint64_t)grid_vertex_count(r->grid);
+    out->cpu_bytes_per_frame = r->stream_bytes + (r->vtf ? 0 :
+        sizeof(float) * GRID_FLOATS * (uint64_t)grid_vertex_count(r->grid));
     out->vertices = grid_vertex_count(r->grid);
     out->triangles = grid_index_count(r->grid) / 3;
     out->sea_draws = r->draws;
@@ -792,7 +950,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
 {
     int n = snprintf(buf, size,
         "tier: %s (%d texture units)\n"
-        "geometry: %s, CPU-displaced (no vertex texture fetch), %d vertices streamed per frame\n"
+        "geometry: %s, %s, %d vertices\n"
         "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x)\n"
         "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
         "fetches: per run of rows only the patterns not fully filtered there; whitecaps of %d "
@@ -800,7 +958,11 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "fragment precision: %s\n"
         "shading: %s\n",
         gpu_tier_name(r->gpu->caps.tier), r->gpu->caps.texture_units,
-        geometry_kind_name(r->d.geometry), grid_vertex_count(r->grid), r->nfs,
+        geometry_kind_name(r->d.geometry),
+        r->vtf ? "built and displaced in the vertex shader (vertex texture fetch, two loop frames "
+                 "per pattern blended there)"
+               : "CPU-displaced (no vertex texture fetch), streamed per frame",
+        grid_vertex_count(r->grid), r->nfs,
         r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes, r->nwc,
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
