@@ -263,7 +263,8 @@ static int choose_vtf(const struct renderer *r)
 {
     GLint combined = 0;
     int n = r->t->patterns;
-    if (r->d.geometry != GEOMETRY_GRID || r->cpu_mask || r->gpu->caps.vertex_texture_units < 2 * n)
+    if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask ||
+        r->gpu->caps.vertex_texture_units < 2 * n)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     if (combined < UNIT_PATTERNS + r->nfs + r->nwc + 2 * n)
@@ -944,6 +945,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     out->vertices = grid_vertex_count(r->grid);
     out->triangles = grid_index_count(r->grid) / 3;
     out->sea_draws = r->draws;
+    out->vtf = r->vtf;
 }
 
 void renderer_describe(const struct renderer *r, char *buf, size_t size)

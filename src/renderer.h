@@ -26,6 +26,8 @@ struct renderer_desc {
     float sun_elev_deg;                 /* sun elevation above the horizon; default 0 = 30 */
     float sun_azim_deg;                 /* sun azimuth, CCW from +x; default 0 */
     float exposure;                     /* tone-mapping exposure; default 0 = automatic */
+    int cpu_geometry;                   /* 1: displace on the CPU even where the tier has
+                                         * vertex texture fetch (tests compare the two) */
 };
 
 struct renderer_stats {
@@ -33,6 +35,7 @@ struct renderer_stats {
     uint64_t cpu_bytes_per_frame;       /* bytes streamed to the GPU each frame */
     int vertices, triangles;
     int sea_draws;                      /* runs of rows drawn in the last frame (renderer.c) */
+    int vtf;                            /* grid built and displaced in the vertex shader */
 };
 
 struct renderer;

@@ -122,6 +122,8 @@ static void make_tables(struct swell_tables *s)
 /* Render one frame at a tier into rgba (top row first). */
 static float g_exposure;   /* 0 = automatic */
 static float g_move_sun[2];  /* when [0] > 0: renderer_set_sun(elev, azim) after creation */
+static int g_cpu_geometry;   /* renderer_desc.cpu_geometry */
+static int g_vtf_used;       /* renderer_stats.vtf of the last render */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
                    const struct camera *cam, double t, uint8_t *rgba, double *ms)
@@ -140,9 +142,13 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.sun_elev_deg = sun_elev;
     d.sun_azim_deg = sun_azim;
     d.exposure = g_exposure;
+    d.cpu_geometry = g_cpu_geometry;
     rc = renderer_create(&d, &r, &err);
     if (rc)
         fail_msg("renderer_create: %s", err.msg);
+    struct renderer_stats st;
+    renderer_get_stats(r, &st);
+    g_vtf_used = st.vtf;
     if (g_move_sun[0] > 0.0f && (rc = renderer_set_sun(r, g_move_sun[0], g_move_sun[1], &err)))
         fail_msg("renderer_set_sun: %s", err.msg);
     assert_int_equal(fx.ph.be->begin_frame(fx.ph.p, &err), 0);
@@ -384,8 +390,8 @@ static void test_set_sun(void **state)
     gpu_shutdown(&gpu);
 }
 
-/* gles2-min (3 patterns in the fragment shader, the largest per vertex) against the best tier
- * the context offers (all patterns in the fragment shader): RMSE below 6 of 255. */
+/* gles2-min (mediump, CPU geometry, eq. 27 by LOD bias) against the best tier the context
+ * offers (there: vertex-shader geometry, textureGrad, highp on llvmpipe): RMSE below 6 of 255. */
 static void test_tiers(void **state)
 {
     struct camera c;
@@ -407,6 +413,35 @@ static void test_tiers(void **state)
     double rmse = sqrt(se / (W * H * 3.0));
     print_message("gles2-min vs %s: RMSE %.2f / 255\n", gpu_tier_name(best), rmse);
     assert_true(rmse < 6.0);
+}
+
+/* Where the tier has vertex texture fetch: the grid built and displaced in ocean.vert against
+ * the same tier's CPU grid (grid.c), same scene: the two geometries agree to RMSE < 1 / 255. */
+static void test_vtf_geometry(void **state)
+{
+    struct camera c;
+    struct gpu probe;
+    struct swell_err err;
+    double se = 0.0;
+    (void)state;
+    assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
+    int best = probe.caps.tier_available, vunits = probe.caps.vertex_texture_units;
+    gpu_shutdown(&probe);
+    if (vunits < 8)
+        skip();
+    surface_camera(&c);
+    g_cpu_geometry = 1;
+    render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
+    assert_int_equal(g_vtf_used, 0);
+    g_cpu_geometry = 0;
+    render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
+    assert_int_equal(g_vtf_used, 1);
+    for (int k = 0; k < W * H * 4; k++)
+        if (k % 4 != 3)
+            se += ((double)fx.img[k] - fx.img2[k]) * ((double)fx.img[k] - fx.img2[k]);
+    double rmse = sqrt(se / (W * H * 3.0));
+    print_message("%s: CPU grid vs vertex-shader grid: RMSE %.3f / 255\n", gpu_tier_name(best), rmse);
+    assert_true(rmse < 1.0);
 }
 
 int main(void)
@@ -436,6 +471,7 @@ int main(void)
         cmocka_unit_test(test_glint),
         cmocka_unit_test(test_loop),
         cmocka_unit_test(test_tiers),
+        cmocka_unit_test(test_vtf_geometry),
         cmocka_unit_test(test_set_sun),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
