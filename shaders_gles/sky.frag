@@ -1,20 +1,24 @@
-// sky.frag - the background sky from the tone-mapped (display-space) sky map the renderer
-// derives from the baked one, plus the sun disc: no tone mapping per pixel.
+// sky.frag - the background sky: one fetch of the tone-mapped (display-space) sky map the
+// renderer derives from the baked one. With SUN_DISC: the sun's disc (angular radius 0.267 deg)
+// drawn as a quad the renderer places, tone-mapped sun plus sky.
+// validate: | SUN_DISC
 #include "common.glsl"
 
+#ifdef SUN_DISC
+uniform vec3 sun_display;           // tone-mapped sun disc (sun + sky radiance, x exposure)
+varying vec2 v_disc;
+#else
 uniform sampler2D sky_tex;          // display-space sky map (renderer.c: tone_map of the bake)
-uniform vec3 sun_dir_world;
-uniform vec3 sun_display;           // tone-mapped sun disc (sky + sun radiance, x exposure)
-varying vec3 v_ray_world;
+varying vec2 v_uv;
+#endif
 
 void main()
 {
-    vec3 d = normalize(v_ray_world);
-    vec3 c = texture2D(sky_tex, sky_map_uv(d)).rgb;
-    // Sun disc, angular radius 0.267 deg: cos = 0.999989 is not representable in mediump, so
-    // the test compares the squared chord |d - sun|^2 = 2 (1 - cos) with 2.2e-5 instead.
-    vec3 e = d - sun_dir_world;
-    if (dot(e, e) < 2.2e-5 && d.z > 0.0)
-        c = sun_display;
-    gl_FragColor = vec4(c, 1.0);
+#ifdef SUN_DISC
+    if (dot(v_disc, v_disc) > 1.0)
+        discard;
+    gl_FragColor = vec4(sun_display, 1.0);
+#else
+    gl_FragColor = vec4(texture2D(sky_tex, v_uv).rgb, 1.0);
+#endif
 }

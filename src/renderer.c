@@ -43,10 +43,15 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "wc_tex2", "wc_tex3"
 };
 
-enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_DIR, SU_SUN_DISPLAY, SU_COUNT };
+enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
 static const char *const sky_uniform_names[SU_COUNT] = {
-    "clip_to_world_rel", "sky_tex", "sun_dir_world", "sun_display"
+    "clip_to_world_rel", "sky_tex", "sun_ndc", "sun_display"
 };
+
+/* The background sky mesh: view rays and map coordinates per vertex (sky.vert). */
+#define SKY_MESH_W 33
+#define SKY_MESH_H 19
+#define SUN_RADIUS_RAD 0.00466f   /* 0.267 deg */
 
 /* A pattern is dropped from a run of rows once its smallest pixel footprint there exceeds the
  * patch by this factor (LOD >= log2 N + 0.3: trilinear reads the 1x1 level alone), a margin for
@@ -92,7 +97,9 @@ struct renderer {
     struct grid *grid;
     struct sky sky;
     struct shader_program ocean[SWELL_MAX_PATTERNS + 1], skyp;   /* ocean[k]: k slots fetched */
-    GLint ou[SWELL_MAX_PATTERNS + 1][OU_COUNT], su[SU_COUNT];
+    struct shader_program sunp;
+    GLint ou[SWELL_MAX_PATTERNS + 1][OU_COUNT], su[SU_COUNT], sunu[SU_COUNT];
+    GLuint sky_vbo, sky_ibo;
     GLint vu[SWELL_MAX_PATTERNS + 1][VU_COUNT];
     /* Tiers with vertex texture fetch, projected grid: the grid is built and displaced in
      * ocean.vert from a static VBO of grid parameters and, per pattern, the two loop frames
@@ -175,6 +182,8 @@ void renderer_destroy(struct renderer *r)
         free(r->slot[s].wc_b);
         free(r->slot[s].slope_b);
     }
+    gpu_buffer_destroy(r->gpu, &r->sky_ibo);
+    gpu_buffer_destroy(r->gpu, &r->sky_vbo);
     gpu_buffer_destroy(r->gpu, &r->quad_vbo);
     gpu_buffer_destroy(r->gpu, &r->ibo);
     gpu_buffer_destroy(r->gpu, &r->vbo);
@@ -183,6 +192,7 @@ void renderer_destroy(struct renderer *r)
     gpu_texture_destroy(r->gpu, &r->sky_tex);
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
     free(r->scratch);
+    shader_program_destroy(&r->sunp);
     shader_program_destroy(&r->skyp);
     for (int k = SWELL_MAX_PATTERNS; k >= 0; k--)
         shader_program_destroy(&r->ocean[k]);
@@ -530,7 +540,40 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     sd.uniform_locations = r->su;
     sd.attribs = sky_attribs;
     sd.attrib_count = 1;
-    return shader_program_build(&sd, &r->skyp, err);
+    if ((rc = shader_program_build(&sd, &r->skyp, err)))
+        return rc;
+    sd.defines = "SUN_DISC";
+    sd.uniform_locations = r->sunu;
+    return shader_program_build(&sd, &r->sunp, err);
+}
+
+static int create_sky_mesh(struct renderer *r, struct swell_err *err)
+{
+    float v[SKY_MESH_W * SKY_MESH_H * 2];
+    uint16_t idx[(SKY_MESH_W - 1) * (SKY_MESH_H - 1) * 6];
+    int n = 0, rc;
+    for (int j = 0; j < SKY_MESH_H; j++)
+        for (int i = 0; i < SKY_MESH_W; i++) {
+            v[2 * (j * SKY_MESH_W + i)] = -1.0f + 2.0f * (float)i / (SKY_MESH_W - 1);
+            v[2 * (j * SKY_MESH_W + i) + 1] = -1.0f + 2.0f * (float)j / (SKY_MESH_H - 1);
+        }
+    for (int j = 0; j + 1 < SKY_MESH_H; j++)
+        for (int i = 0; i + 1 < SKY_MESH_W; i++) {
+            uint16_t a = (uint16_t)(j * SKY_MESH_W + i), b = (uint16_t)(a + 1);
+            uint16_t c = (uint16_t)(a + SKY_MESH_W), d = (uint16_t)(c + 1);
+            idx[n++] = a; idx[n++] = b; idx[n++] = c;
+            idx[n++] = b; idx[n++] = d; idx[n++] = c;
+        }
+    if ((rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, sizeof(v), GL_STATIC_DRAW,
+                                "renderer: sky mesh", &r->sky_vbo, err)) ||
+        (rc = gpu_buffer_create(r->gpu, GL_ELEMENT_ARRAY_BUFFER, sizeof(idx), GL_STATIC_DRAW,
+                                "renderer: sky mesh indices", &r->sky_ibo, err)))
+        return rc;
+    glBindBuffer(GL_ARRAY_BUFFER, r->sky_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(v), v);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->sky_ibo);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, sizeof(idx), idx);
+    return 0;
 }
 
 static int create_buffers(struct renderer *r, struct swell_err *err)
@@ -549,7 +592,8 @@ static int create_buffers(struct renderer *r, struct swell_err *err)
         (rc = gpu_buffer_create(r->gpu, GL_ELEMENT_ARRAY_BUFFER, ibytes, GL_STATIC_DRAW,
                                 "renderer: sea indices", &r->ibo, err)) ||
         (rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, sizeof(quad), GL_STATIC_DRAW,
-                                "renderer: sky quad", &r->quad_vbo, err)))
+                                "renderer: sun quad", &r->quad_vbo, err)) ||
+        (rc = create_sky_mesh(r, err)))
         return rc;
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
     glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, (GLsizeiptr)ibytes, grid_indices(r->grid));
@@ -709,20 +753,38 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
         y0 = 0;
     glEnable(GL_SCISSOR_TEST);
     glScissor(0, y0, width, height - y0);
-    /* The sun disc: E_sun over its solid angle (6.8e-5 sr), clamped to stay fp16-finite. */
-    float sun_disp[3];
-    for (int c = 0; c < 3; c++)
-        sun_disp[c] = tone_map_1(r->exposure * r->sky.sun_irr[c] / 6.8e-5f);
     glm_mat4_inv(world_to_clip, inv);
     glUseProgram(r->skyp.program);
     glUniformMatrix4fv(r->su[SU_CLIP_TO_WORLD], 1, GL_FALSE, (const GLfloat *)inv);
     bind_tex(UNIT_SKY, r->sky_display_tex, r->su[SU_SKY_TEX]);
-    glUniform3fv(r->su[SU_SUN_DIR], 1, r->sky.sun_dir);
-    glUniform3fv(r->su[SU_SUN_DISPLAY], 1, sun_disp);
-    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, r->sky_vbo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->sky_ibo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDrawElements(GL_TRIANGLES, (SKY_MESH_W - 1) * (SKY_MESH_H - 1) * 6, GL_UNSIGNED_SHORT,
+                   (const void *)0);
+    /* The sun disc, where it is above the horizon and in front: a quad around the direction's
+     * projection (the sea, drawn next, hides whatever of it is below the horizon). Its colour:
+     * E_sun over the disc's solid angle (6.8e-5 sr), tone-mapped. */
+    const float *sd = r->sky.sun_dir;
+    vec4 dir = { sd[0], sd[1], sd[2], 0.0f };
+    glm_mat4_mulv(world_to_clip, dir, clip);
+    if (sd[2] > 0.0f && clip[3] > 0.0f) {
+        float sun_disp[3];
+        mat4 proj;
+        camera_projection(cam, height > 0 ? (float)width / (float)height : 1.0f, proj);
+        /* radius: the disc's angle times the projection's scale (small-angle, near the axis) */
+        float ndc[4] = { clip[0] / clip[3], clip[1] / clip[3], SUN_RADIUS_RAD * proj[0][0],
+                         SUN_RADIUS_RAD * proj[1][1] };
+        for (int c = 0; c < 3; c++)
+            sun_disp[c] = tone_map_1(r->exposure * r->sky.sun_irr[c] / 6.8e-5f);
+        glUseProgram(r->sunp.program);
+        glUniform4fv(r->sunu[SU_SUN_NDC], 1, ndc);
+        glUniform3fv(r->sunu[SU_SUN_DISPLAY], 1, sun_disp);
+        glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
     glDisableVertexAttribArray(0);
     glDisable(GL_SCISSOR_TEST);
 }
