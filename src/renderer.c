@@ -898,6 +898,8 @@ static int slots_needed(const struct renderer *r, float d2, float alt, float pix
 {
     float foot = (d2 + alt * alt) / alt * pix_angle;
     int k = 0;
+    if (r->d.fetch_all)
+        return r->nfs;
     while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * DROP_FOOTPRINT > foot)
         k++;
     return k;

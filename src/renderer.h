@@ -28,6 +28,8 @@ struct renderer_desc {
     float exposure;                     /* tone-mapping exposure; default 0 = automatic */
     int cpu_geometry;                   /* 1: displace on the CPU even where the tier has
                                          * vertex texture fetch (tests compare the two) */
+    int fetch_all;                      /* 1: every row fetches every pattern (tests compare
+                                         * with the runs that drop fully filtered ones) */
 };
 
 struct renderer_stats {

@@ -123,6 +123,8 @@ static void make_tables(struct swell_tables *s)
 static float g_exposure;   /* 0 = automatic */
 static float g_move_sun[2];  /* when [0] > 0: renderer_set_sun(elev, azim) after creation */
 static int g_cpu_geometry;   /* renderer_desc.cpu_geometry */
+static int g_fetch_all;      /* renderer_desc.fetch_all */
+static int g_draws;          /* renderer_stats.sea_draws of the last render */
 static int g_vtf_used;       /* renderer_stats.vtf of the last render */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
@@ -143,6 +145,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.sun_azim_deg = sun_azim;
     d.exposure = g_exposure;
     d.cpu_geometry = g_cpu_geometry;
+    d.fetch_all = g_fetch_all;
     rc = renderer_create(&d, &r, &err);
     if (rc)
         fail_msg("renderer_create: %s", err.msg);
@@ -159,6 +162,8 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
         fail_msg("renderer_frame: %s", err.msg);
     assert_int_equal(fx.ph.be->present(fx.ph.p, &err), 0);
     clock_gettime(CLOCK_MONOTONIC, &b);
+    renderer_get_stats(r, &st);
+    g_draws = st.sea_draws;
     if (ms)
         *ms = (b.tv_sec - a.tv_sec) * 1e3 + (b.tv_nsec - a.tv_nsec) * 1e-6;
     assert_int_equal(fx.ph.be->read_rgba(fx.ph.p, rgba, &err), 0);
@@ -444,6 +449,34 @@ static void test_vtf_geometry(void **state)
     assert_true(rmse < 1.0);
 }
 
+/* Rows where a pattern's patch is smaller than a pixel take its top mip level as a constant
+ * instead of fetching it: from 1 km up the picture must be the one that fetches every pattern
+ * everywhere (RMSE < 1 / 255), drawn in more than one run, at both qualities. */
+static void test_fetch_runs(void **state)
+{
+    struct camera c;
+    (void)state;
+    camera_defaults(&c);
+    c.pos[2] = 1000.0;
+    c.pitch_deg = -20.0f;
+    for (int q = 0; q < QUALITY_COUNT; q++) {
+        double se = 0.0;
+        g_fetch_all = 1;
+        render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
+        assert_int_equal(g_draws, 1);
+        g_fetch_all = 0;
+        render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
+        assert_true(g_draws > 1);
+        for (int k = 0; k < W * H * 4; k++)
+            if (k % 4 != 3)
+                se += ((double)fx.img[k] - fx.img2[k]) * ((double)fx.img[k] - fx.img2[k]);
+        double rmse = sqrt(se / (W * H * 3.0));
+        print_message("%s, 1 km: %d runs vs every pattern everywhere: RMSE %.3f / 255\n",
+                      render_quality_name(q), g_draws, rmse);
+        assert_true(rmse < 1.0);
+    }
+}
+
 int main(void)
 {
     struct platform_desc pd = { 0 };
@@ -472,6 +505,7 @@ int main(void)
         cmocka_unit_test(test_loop),
         cmocka_unit_test(test_tiers),
         cmocka_unit_test(test_vtf_geometry),
+        cmocka_unit_test(test_fetch_runs),
         cmocka_unit_test(test_set_sun),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
