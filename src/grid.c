@@ -12,18 +12,50 @@
 #define NEAR_N 129            /* near patch vertices per side (128 cells) */
 #define FAR_RINGS 32          /* far patch rings from the near patch border to the far plane */
 #define NEAR_FADE 0.1         /* last tenth of the near patch fades the displacement to 0 */
+#define BLEND_BLOCK 16        /* RGBA8 bytes (4 texels) blended to floats per vectorised block */
+#define TILE_LOG2 4           /* lazily blended tiles of 16 x 16 texels */
+#define COORD_BIAS 1073741824.0  /* 2^30: a multiple of every table size; makes texel coords > 0 */
+
+/* A blended, dequantised level of a table as float4 texels, with its first column and row
+ * repeated after its last so a bilinear footprint never wraps: texel (x, y) is at
+ * data + 4 (y (w + 1) + x). It is blended lazily, by tiles of 16 x 16 texels (plus the
+ * next column and row), the first time a sample needs one in the current phase: views near the
+ * sea touch a few of the finest level's tiles. */
+struct f4_image {
+    float *data;              /* (w + 1) (h + 1) texels */
+    uint32_t *stamp;          /* per tile: the generation it was blended for */
+    const struct swell_table *t;
+    const float *sc, *bi;     /* dequantisation of a blend (a w0 + b w1 + rnd) >> shift */
+    uint16_t rnd;             /* 0 and shift 0: the exact blend (displacement); 128 and 8: */
+    int shift;                /* rounded to bytes as stream_blend does (moments, which the
+                                 fragment shader's patterns read from such bytes too) */
+    int level, w, h, tiles_x;
+    uint32_t gen;             /* bumped when the phase changes */
+    struct stream_phase ph;   /* phase of generation gen */
+};
 
 struct grid_pattern {
     const struct swell_table *disp, *slope, *wc;
-    float *disp_f;            /* blended, dequantised displacement, N_geo^2 * 3 */
-    uint8_t *slope_b, *wc_b;  /* blended RGBA8 chains (CPU patterns only) */
-    size_t slope_off[16], wc_off[16];   /* byte offset of each level in those chains */
-    int level_size[16];                 /* width (= height) of each level */
+    float *disp_mem;          /* owned storage of every image below */
+    uint32_t *stamp_mem;      /* and of their tile stamps */
+    struct f4_image disp_f;   /* displacement (x, y, z, unused), m */
+    struct f4_image slope_f[16], wc_f[16];  /* moment chains per level (CPU patterns only) */
+    float disp_sc[4], disp_bi[4];           /* dequantisation of a blend a w0 + b w1 */
+    float slope_sc[4], slope_bi[4], wc_sc[4], wc_bi[4];
     double inv_l;             /* 1 / L_i */
     float lambda_m;           /* characteristic wavelength for the eq. 2 weight, m */
-    int cpu;
-    struct stream_phase phase;  /* of this pattern's own loop period (bake.c) */
-    int phase_valid;
+    int cpu, levels;
+};
+
+/* One frame's constants of a pattern for the vertex loop: texel coordinates are
+ * x = x0 + rest_x * kx (the uv offset and the half-texel shift folded in, in double). */
+struct pattern_frame {
+    struct grid_pattern *p;
+    double x0, y0, kx, ky;    /* displacement image */
+    double mx0[16], my0[16], mk[16];   /* moment level l: x = mx0[l] + rest_x mk[l] */
+    float lambda_m;
+    float lev_k;              /* level-0 texels per metre of footprint: width / L_i */
+    int disp_on;              /* some vertex gives this pattern a non-zero eq. 2 weight */
 };
 
 struct grid {
@@ -32,7 +64,10 @@ struct grid {
     int nverts, nidx;
     uint16_t *idx;
     float *foot;              /* per-vertex footprint (cell size on the sea plane), m */
-    float *fade;              /* per-vertex displacement factor (patches) */
+    float *acc;               /* per-vertex summed displacement (x, y, z, unused), m */
+    float *fade;              /* per-vertex displacement factor (1 on the projected grid) */
+    float foot_lo, foot_hi;   /* smallest and largest footprint this frame */
+    float foot_lo_wet;        /* smallest footprint of the vertices with fade > 0 */
     float *row_foot;          /* per row of triangles: smallest squared distance, m^2 */
     int rows;
     struct grid_pattern p[SWELL_MAX_PATTERNS];
@@ -105,18 +140,109 @@ static int build_topology(struct grid *g, struct swell_err *err)
     return 0;
 }
 
+static size_t f4_texels(int w, int h)
+{
+    return (size_t)(w + 1) * (size_t)(h + 1);
+}
+
+/* Dequantisation of a blend of RGBA8 texels (w0 + w1 = STREAM_W_ONE): exact,
+ * value = bias + scale (a w0 + b w1) / (255 STREAM_W_ONE), or rounded to a byte v first,
+ * value = bias + scale v / 255. */
+static void dequant(const struct swell_table *t, int rounded, float sc[4], float bi[4])
+{
+    for (int c = 0; c < 4; c++) {
+        sc[c] = (float)(t->scale[c] / (255.0 * (rounded ? 1 : STREAM_W_ONE)));
+        bi[c] = t->bias[c];
+    }
+}
+
+static int tiles_of(int n)
+{
+    return (n + (1 << TILE_LOG2) - 1) >> TILE_LOG2;
+}
+
+/* Lay out image im (level l of t) at *texels floats / *tiles stamps into the memory at
+ * data / stamp (both NULL: only count). */
+static void image_layout(struct f4_image *im, const struct swell_table *t, int l, const float *sc,
+                         const float *bi, float *data, uint32_t *stamp, size_t *texels,
+                         size_t *tiles)
+{
+    int w = table_level_width(t, l), h = table_level_height(t, l);
+    if (data) {
+        *im = (struct f4_image){ .data = data + 4 * *texels, .stamp = stamp + *tiles, .t = t,
+                                 .sc = sc, .bi = bi, .level = l, .w = w, .h = h,
+                                 .tiles_x = tiles_of(w), .gen = 1 };
+        im->ph.f0 = -1;
+        if (t->kind != TABLE_DISP) {
+            im->rnd = STREAM_W_ONE / 2;
+            im->shift = 8;      /* log2(STREAM_W_ONE) */
+        }
+    }
+    *texels += f4_texels(w, h);
+    *tiles += (size_t)tiles_of(w) * (size_t)tiles_of(h);
+}
+
+/* The float images of pattern i: its displacement, and its moment chains if it is a CPU
+ * pattern. Stamps start at 0, older than any generation. */
+static int pattern_images(struct grid_pattern *p, int i, struct swell_err *err)
+{
+    size_t texels = 0, tiles = 0;
+    dequant(p->disp, 0, p->disp_sc, p->disp_bi);
+    dequant(p->slope, 1, p->slope_sc, p->slope_bi);
+    dequant(p->wc, 1, p->wc_sc, p->wc_bi);
+    for (int pass = 0; pass < 2; pass++) {
+        float *data = pass ? p->disp_mem : NULL;
+        uint32_t *stamp = pass ? p->stamp_mem : NULL;
+        texels = tiles = 0;
+        image_layout(&p->disp_f, p->disp, 0, p->disp_sc, p->disp_bi, data, stamp, &texels, &tiles);
+        for (int l = 0; p->cpu && l < p->levels; l++) {
+            image_layout(&p->slope_f[l], p->slope, l, p->slope_sc, p->slope_bi, data, stamp,
+                         &texels, &tiles);
+            image_layout(&p->wc_f[l], p->wc, l, p->wc_sc, p->wc_bi, data, stamp, &texels, &tiles);
+        }
+        if (pass == 0) {
+            p->disp_mem = malloc(sizeof(float) * 4 * texels);
+            p->stamp_mem = calloc(tiles, sizeof(uint32_t));
+            if (!p->disp_mem || !p->stamp_mem)
+                return swell_fail(err, SWELL_E_NOMEM, "grid: no memory for pattern %d images", i);
+        }
+    }
+    return 0;
+}
+
+/* The displacement factor depends on the vertex only: 1 on the projected grid; on the patches 0
+ * on the far rings and fading to 0 over the near patch's last NEAR_FADE (Hu 2006 §3). */
+static void init_fade(struct grid *g)
+{
+    int near0 = (FAR_RINGS + 1) * 4 * (NEAR_N - 1);
+    double inv = 1.0 / (NEAR_N - 1);
+    if (g->kind == 0) {
+        for (int k = 0; k < g->nverts; k++)
+            g->fade[k] = 1.0f;
+        return;
+    }
+    for (int k = 0; k < near0; k++)
+        g->fade[k] = 0.0f;
+    for (int j = 0; j < NEAR_N; j++)
+        for (int i = 0; i < NEAR_N; i++) {
+            double x = -1.0 + 2.0 * i * inv, y = -1.0 + 2.0 * j * inv;
+            double edge = 1.0 - fmax(fabs(x), fabs(y));
+            g->fade[near0 + j * NEAR_N + i] = (float)fmin(edge / NEAR_FADE, 1.0);
+        }
+}
+
 void grid_destroy(struct grid *g)
 {
     if (!g)
         return;
     for (int i = 0; i < SWELL_MAX_PATTERNS; i++) {
-        free(g->p[i].disp_f);
-        free(g->p[i].slope_b);
-        free(g->p[i].wc_b);
+        free(g->p[i].disp_mem);
+        free(g->p[i].stamp_mem);
     }
     free(g->row_foot);
     free(g->fade);
     free(g->foot);
+    free(g->acc);
     free(g->idx);
     free(g);
 }
@@ -148,10 +274,12 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     g->row_foot = calloc((size_t)g->rows, sizeof(float));
     g->foot = malloc(sizeof(float) * (size_t)g->nverts);
     g->fade = malloc(sizeof(float) * (size_t)g->nverts);
-    if (!g->foot || !g->fade || !g->row_foot) {
+    g->acc = malloc(sizeof(float) * 4 * (size_t)g->nverts);
+    if (!g->foot || !g->fade || !g->row_foot || !g->acc) {
         rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for %d vertices", g->nverts);
         goto fail;
     }
+    init_fade(g);
     for (int i = 0; i < t->patterns; i++) {
         struct grid_pattern *p = &g->p[i];
         const struct swell_pattern_info *pi = &t->pattern[i];
@@ -167,14 +295,7 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
         p->inv_l = 1.0 / (pi->size_m > 0.0f ? pi->size_m : 1.0f);
         /* One wavelength stands for the pattern's band in eq. 2: the geometric mean of its
          * [k_min, k_max], else a quarter of the patch. */
-        p->lambda_m = pi->k_min > 0.0f && pi->k_max > 0.0f
-                          ? (float)(2.0 * M_PI / sqrt((double)pi->k_min * pi->k_max))
-                          : 0.25f * pi->size_m;
-        p->disp_f = malloc(sizeof(float) * 3 * (size_t)p->disp->width * p->disp->height);
-        if (!p->disp_f) {
-            rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for pattern %d displacement", i);
-            goto fail;
-        }
+        p->lambda_m = grid_band_wavelength(pi);
         {
             /* the largest |Dz| the table holds, over every frame */
             float top = 0.0f, side = 0.0f;
@@ -195,18 +316,10 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
                                 "differ in size, are not square or have over 16 levels", i);
                 goto fail;
             }
-            for (int l = 0; l < p->slope->levels; l++) {
-                p->level_size[l] = table_level_width(p->slope, l);
-                p->slope_off[l] = stream_level_offset(p->slope, l);
-                p->wc_off[l] = stream_level_offset(p->wc, l);
-            }
-            p->slope_b = malloc(stream_blended_bytes(p->slope));
-            p->wc_b = malloc(stream_blended_bytes(p->wc));
-            if (!p->slope_b || !p->wc_b) {
-                rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for pattern %d moments", i);
-                goto fail;
-            }
+            p->levels = p->slope->levels;
         }
+        if ((rc = pattern_images(p, i, err)))
+            goto fail;
     }
     *out = g;
     return 0;
@@ -215,138 +328,187 @@ fail:
     return rc;
 }
 
-/* Blend loop frames f0, f1 of every pattern once per phase change; each pattern loops with its
- * own period T_i (a whole fraction of T, bake.c). */
-static void blend_tables(struct grid *g, double t_s)
+/* 4 RGBA8 texels of loop frames f0 (a) and f1 (b) blended in 16 bits (a w0 + b w1 + rnd <=
+ * 255 * 256 + 128), shifted and dequantised to floats. Fixed blocks of restrict-qualified data
+ * are what -O2's very-cheap vectoriser accepts (SSE2, NEON; no intrinsics). */
+static inline void blend_block(float *restrict out, const uint8_t *restrict a,
+                               const uint8_t *restrict b, const float *restrict sc,
+                               const float *restrict bi, uint16_t w0, uint16_t w1, uint16_t rnd,
+                               int shift)
 {
-    for (int i = 0; i < g->t->patterns; i++) {
-        struct grid_pattern *p = &g->p[i];
-        struct stream_phase phs;
-        const struct stream_phase *ph = &phs;
-        stream_loop_phase(t_s, tables_pattern_period(g->t, i), g->t->frames, &phs);
-        if (p->phase_valid && phs.f0 == p->phase.f0 && phs.w == p->phase.w)
-            continue;
-        p->phase = phs;
-        p->phase_valid = 1;
-        const struct swell_table *d = p->disp;
-        int f0 = ph->f0 < d->layers ? ph->f0 : 0, f1 = ph->f1 < d->layers ? ph->f1 : 0;
-        const uint8_t *a = d->data + table_offset(d, 0, f0);
-        const uint8_t *b = d->data + table_offset(d, 0, f1);
-        float w1 = (float)ph->w / STREAM_W_ONE, w0 = 1.0f - w1;
-        size_t texels = (size_t)d->width * d->height;
-        float sc[3], bi[3];
-        for (int c = 0; c < 3; c++) {
-            sc[c] = d->scale[c] / 255.0f;
-            bi[c] = d->bias[c];
-        }
-        for (size_t k = 0; k < texels; k++)
-            for (int c = 0; c < 3; c++)
-                p->disp_f[3 * k + c] = bi[c] + sc[c] * (w0 * a[4 * k + c] + w1 * b[4 * k + c]);
-        if (p->cpu) {
-            stream_blend(p->slope, ph, p->slope_b);
-            stream_blend(p->wc, ph, p->wc_b);
-        }
+    uint16_t v[BLEND_BLOCK];
+    for (int k = 0; k < BLEND_BLOCK; k++)
+        v[k] = (uint16_t)((uint16_t)(a[k] * w0 + b[k] * w1 + rnd) >> shift);
+    for (int k = 0; k < BLEND_BLOCK; k++)
+        out[k] = bi[k] + sc[k] * v[k];
+}
+
+/* Blend tile (tx, ty) of im for its phase: texels [x0, x0 + TILE] x [y0, y0 + TILE] clipped to
+ * the padded image, the last column and row being the next tile's first (or the wrap copy). */
+static void blend_tile(struct f4_image *im, int tx, int ty)
+{
+    const struct swell_table *t = im->t;
+    const struct stream_phase *ph = &im->ph;
+    int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0;
+    uint16_t w1 = (uint16_t)ph->w, w0 = (uint16_t)(STREAM_W_ONE - w1), rnd = im->rnd;
+    int shift = im->shift;
+    int x0 = tx << TILE_LOG2, y0 = ty << TILE_LOG2;
+    int x1 = x0 + (1 << TILE_LOG2) < im->w ? x0 + (1 << TILE_LOG2) : im->w;
+    int y1 = y0 + (1 << TILE_LOG2) < im->h ? y0 + (1 << TILE_LOG2) : im->h;
+    size_t row = 4 * (size_t)im->w, stride = 4 * (size_t)(im->w + 1);
+    size_t span = 4 * (size_t)(x1 - x0);
+    const uint8_t *a = im->t->data + table_offset(t, im->level, f0);
+    const uint8_t *b = im->t->data + table_offset(t, im->level, f1);
+    float sc[BLEND_BLOCK], bi[BLEND_BLOCK];
+    for (int k = 0; k < BLEND_BLOCK; k++) {
+        sc[k] = im->sc[k & 3];
+        bi[k] = im->bi[k & 3];
+    }
+    for (int y = y0; y <= y1; y++) {
+        size_t src = (size_t)(y & (im->h - 1)) * row, k = 0;
+        const uint8_t *ra = a + src + 4 * (size_t)x0, *rb = b + src + 4 * (size_t)x0;
+        float *o = im->data + (size_t)y * stride + 4 * (size_t)x0;
+        size_t last = 4 * (size_t)(x1 & (im->w - 1));   /* source of the column after the span */
+        for (; k + BLEND_BLOCK <= span; k += BLEND_BLOCK)
+            blend_block(o + k, ra + k, rb + k, sc, bi, w0, w1, rnd, shift);
+        for (; k < span; k++)
+            o[k] = bi[k] + sc[k] * (uint16_t)((uint16_t)(ra[k] * w0 + rb[k] * w1 + rnd) >> shift);
+        for (int c = 0; c < 4; c++)
+            o[span + c] = bi[c] + sc[c] * (uint16_t)((uint16_t)(a[src + last + c] * w0 +
+                                                                b[src + last + c] * w1 + rnd) >> shift);
+    }
+    im->stamp[ty * im->tiles_x + tx] = im->gen;
+}
+
+/* Start a new generation of im when the pattern's phase has moved: every tile is stale. */
+static inline void image_phase(struct f4_image *im, const struct stream_phase *ph)
+{
+    if (ph->f0 == im->ph.f0 && ph->w == im->ph.w)
+        return;
+    im->ph = *ph;
+    im->gen++;
+}
+
+/* Bilinear sample of a float4 image at texel coordinates (x, y), wrapped (power-of-two sizes),
+ * blending the tile first if it is stale. COORD_BIAS, a multiple of the size, makes the
+ * coordinates positive so truncation floors them (|x| < 2^30 texels; the fraction keeps 2^-22
+ * texel). */
+static inline void sample_f4(struct f4_image *im, double x, double y, float out[4])
+{
+    /* the image's fields in locals: stores to the vertices may not alias them */
+    const int wm = im->w - 1, hm = im->h - 1;
+    const float *data = im->data;
+    double bx = x + COORD_BIAS, by = y + COORD_BIAS;
+    long long ix = (long long)bx, iy = (long long)by;
+    float fx = (float)(bx - (double)ix), fy = (float)(by - (double)iy);
+    int xi = (int)(ix & wm), yi = (int)(iy & hm);
+    size_t stride = 4 * (size_t)(wm + 2);
+    if (im->stamp[(yi >> TILE_LOG2) * im->tiles_x + (xi >> TILE_LOG2)] != im->gen)
+        blend_tile(im, xi >> TILE_LOG2, yi >> TILE_LOG2);
+    const float *a = data + (size_t)yi * stride + 4 * (size_t)xi;
+    const float *c = a + stride;
+    for (int k = 0; k < 4; k++) {
+        float top = a[k] + (a[k + 4] - a[k]) * fx, bot = c[k] + (c[k + 4] - c[k]) * fx;
+        out[k] = top + (bot - top) * fy;
     }
 }
 
-/* floor() without a libm call (baseline x86-64 and ARMv7 have no rounding instruction). */
-static inline long long floor_ll(double x)
+/* The same at the same coordinates in two images of the same size (slope and whitecaps). */
+static inline void sample_f4x2(struct f4_image *im, struct f4_image *im2, double x, double y,
+                               float out[4], float out2[4])
 {
-    long long i = (long long)x;
-    return i - (x < (double)i);
-}
-
-/* Bilinear, wrapped (power-of-two size) sample of a float3 image at texture coords (u, v). */
-static void sample_disp(const struct grid_pattern *p, double u, double v, float out[3])
-{
-    int n = p->disp->width, m = p->disp->height;
-    double x = u * n - 0.5, y = v * m - 0.5;
-    long long ix = floor_ll(x), iy = floor_ll(y);
-    float fx = (float)(x - (double)ix), fy = (float)(y - (double)iy);
-    int x0 = (int)(ix & (n - 1)), y0 = (int)(iy & (m - 1));
-    int x1 = (x0 + 1) & (n - 1), y1 = (y0 + 1) & (m - 1);
-    const float *a = p->disp_f + 3 * ((size_t)y0 * n + x0), *b = p->disp_f + 3 * ((size_t)y0 * n + x1);
-    const float *c = p->disp_f + 3 * ((size_t)y1 * n + x0), *d = p->disp_f + 3 * ((size_t)y1 * n + x1);
-    for (int k = 0; k < 3; k++) {
-        float top = a[k] + (b[k] - a[k]) * fx, bot = c[k] + (d[k] - c[k]) * fx;
+    const int wm = im->w - 1, hm = im->h - 1;
+    double bx = x + COORD_BIAS, by = y + COORD_BIAS;
+    long long ix = (long long)bx, iy = (long long)by;
+    float fx = (float)(bx - (double)ix), fy = (float)(by - (double)iy);
+    int xi = (int)(ix & wm), yi = (int)(iy & hm);
+    int tile = (yi >> TILE_LOG2) * im->tiles_x + (xi >> TILE_LOG2);
+    size_t stride = 4 * (size_t)(wm + 2), off = (size_t)yi * stride + 4 * (size_t)xi;
+    if (im->stamp[tile] != im->gen)
+        blend_tile(im, xi >> TILE_LOG2, yi >> TILE_LOG2);
+    if (im2->stamp[tile] != im2->gen)
+        blend_tile(im2, xi >> TILE_LOG2, yi >> TILE_LOG2);
+    const float *a = im->data + off, *c = a + stride;
+    const float *a2 = im2->data + off, *c2 = a2 + stride;
+    for (int k = 0; k < 4; k++) {
+        float top = a[k] + (a[k + 4] - a[k]) * fx, bot = c[k] + (c[k + 4] - c[k]) * fx;
+        float top2 = a2[k] + (a2[k + 4] - a2[k]) * fx, bot2 = c2[k] + (c2[k + 4] - c2[k]) * fx;
         out[k] = top + (bot - top) * fy;
+        out2[k] = top2 + (bot2 - top2) * fy;
     }
 }
 
 static inline float maxf(float a, float b) { return a > b ? a : b; }
 static inline float clamp01(float a) { return a < 0.0f ? 0.0f : (a > 1.0f ? 1.0f : a); }
 
-/* Bilinear wrapped sample of one level of the blended slope and whitecap chains (same size),
- * dequantised: out[0..3] slope moments, out[4..7] whitecap channels. */
-static void sample_moments(const struct grid_pattern *p, int level, double u, double v,
-                           float out[8])
+/* Mip level whose texel matches a footprint of r level-0 texels: floor(log2 r) for r >= 2, else
+ * 0, at most top; read from the float's exponent (r * 2^-k is exact, so this is the level the
+ * halving loop `while (r >= 2) r *= 0.5` stops at). */
+static inline int mip_level(float r, int top)
 {
-    int n = p->level_size[level];
-    const uint8_t *img[2] = { p->slope_b + p->slope_off[level], p->wc_b + p->wc_off[level] };
-    const struct swell_table *t[2] = { p->slope, p->wc };
-    double x = u * n - 0.5, y = v * n - 0.5;
-    long long ix = floor_ll(x), iy = floor_ll(y);
-    float fx = (float)(x - (double)ix), fy = (float)(y - (double)iy);
-    size_t x0 = (size_t)(ix & (n - 1)), y0 = (size_t)(iy & (n - 1));
-    size_t x1 = (x0 + 1) & (size_t)(n - 1), y1 = (y0 + 1) & (size_t)(n - 1);
-    size_t o00 = 4 * (y0 * n + x0), o01 = 4 * (y0 * n + x1), o10 = 4 * (y1 * n + x0),
-           o11 = 4 * (y1 * n + x1);
-    for (int k = 0; k < 8; k++) {
-        const uint8_t *m = img[k >> 2];
-        int c = k & 3;
-        float top = m[o00 + c] + (m[o01 + c] - m[o00 + c]) * fx;
-        float bot = m[o10 + c] + (m[o11 + c] - m[o10 + c]) * fx;
-        out[k] = t[k >> 2]->bias[c] + t[k >> 2]->scale[c] * (1.0f / 255.0f) * (top + (bot - top) * fy);
+    uint32_t bits;
+    int e;
+    if (!(r >= 2.0f))
+        return 0;
+    memcpy(&bits, &r, sizeof(bits));
+    e = (int)(bits >> 23) - 127;    /* r >= 2 is positive and normal (or infinite) */
+    return e < top ? e : top;
+}
+
+int grid_mip_level(float r, int levels)
+{
+    return mip_level(r, levels - 1);
+}
+
+/* Add pattern f's displacement, weighted by Bruneton eq. 2 for each vertex's cell of size foot,
+ * to acc (float4 per vertex). */
+static void disp_pass(const struct grid *g, struct pattern_frame *f, const float *verts,
+                      float *restrict acc, int first)
+{
+    struct f4_image im = f->p->disp_f;   /* a local copy: vertex stores may not alias it */
+    const float lambda_m = f->lambda_m;
+    const double x0 = f->x0, y0 = f->y0, kx = f->kx, ky = f->ky;
+    for (int k = 0; k < g->nverts; k++) {
+        float foot = g->foot[k], x = lambda_m / (foot > 1e-6f ? foot : 1e-6f), w, d[4];
+        float *sum = acc + 4 * (size_t)k;
+        if (first)
+            for (int c = 0; c < 4; c++)
+                sum[c] = 0.0f;
+        if (!(x > FILTER_NMIN))
+            continue;   /* w = 0: waves shorter than Nmin cells are cancelled */
+        w = x >= FILTER_NMAX ? g->fade[k]
+                             : g->fade[k] * grid_filter_weight(FILTER_NMIN, FILTER_NMAX, x);
+        if (!(w > 0.0f))
+            continue;
+        const float *vx = verts + (size_t)k * GRID_FLOATS + GRID_A_REST;
+        sample_f4(&im, x0 + vx[0] * kx, y0 + vx[1] * ky, d);
+        for (int c = 0; c < 4; c++)
+            sum[c] += w * d[c];
     }
 }
 
-/* Displace vertex k (rest position already in verts) and fill its CPU-pattern moments. */
-static void shade_vertex(struct grid *g, float *vx, float foot, float fade, const double off[][2])
+/* Add CPU pattern f's slope and whitecap moments to every vertex: from the mip level whose
+ * texel matches the vertex footprint, the mip texel then holding the footprint's first and
+ * second moments (Bruneton §4.1, Dupuy eq. 7-8). The foam slot holds the clear fraction
+ * prod(1 - foam_i) until grid_update turns it into the foam opacity. */
+static void moment_pass(const struct grid *g, struct pattern_frame *f, float *verts)
 {
-    double rx = vx[GRID_A_REST], ry = vx[GRID_A_REST + 1];
-    float disp[3] = { 0.0f, 0.0f, 0.0f };
-    float sl[2] = { 0.0f, 0.0f }, sv[2] = { 0.0f, 0.0f }, km = 0.0f, kv = 0.0f, clear = 1.0f;
-    float inv_foot = 1.0f / (foot > 1e-6f ? foot : 1e-6f);
-    for (int i = 0; i < g->t->patterns; i++) {
-        struct grid_pattern *p = &g->p[i];
-        double u = off[i][0] + rx * p->inv_l, v = off[i][1] + ry * p->inv_l;
-        /* Bruneton eq. 2: weight of the pattern's waves for a cell of size foot. */
-        float w = fade * grid_filter_weight(FILTER_NMIN, FILTER_NMAX, p->lambda_m * inv_foot);
-        if (w > 0.0f) {
-            float d3[3];
-            sample_disp(p, u, v, d3);
-            for (int c = 0; c < 3; c++)
-                disp[c] += w * d3[c];
-        }
-        if (p->cpu) {
-            /* Mip level whose texel matches the vertex footprint: the mip texel then holds the
-             * footprint's first and second moments (Bruneton §4.1, Dupuy eq. 7-8). */
-            int lev = 0;
-            float r = foot * (float)p->slope->width * (float)p->inv_l, m[8];
-            while (r >= 2.0f && lev < p->slope->levels - 1) {
-                r *= 0.5f;
-                lev++;
-            }
-            sample_moments(p, lev, u, v, m);
-            sl[0] += m[0];
-            sl[1] += m[1];
-            sv[0] += maxf(m[2] - m[0] * m[0], 0.0f);
-            sv[1] += maxf(m[3] - m[1] * m[1], 0.0f);
-            km += m[4];
-            kv += maxf(m[5] - m[4] * m[4], 0.0f);
-            clear *= 1.0f - clamp01(m[6]);
-        }
+    struct grid_pattern *p = f->p;
+    const int top = p->levels - 1;
+    for (int k = 0; k < g->nverts; k++) {
+        float *vx = verts + (size_t)k * GRID_FLOATS, m[4], q[4];
+        int lev = mip_level(g->foot[k] * f->lev_k, top);
+        double x = f->mx0[lev] + vx[GRID_A_REST] * f->mk[lev];
+        double y = f->my0[lev] + vx[GRID_A_REST + 1] * f->mk[lev];
+        sample_f4x2(&p->slope_f[lev], &p->wc_f[lev], x, y, m, q);
+        vx[GRID_A_SLOPE] += m[0];
+        vx[GRID_A_SLOPE + 1] += m[1];
+        vx[GRID_A_SVAR] += maxf(m[2] - m[0] * m[0], 0.0f);
+        vx[GRID_A_SVAR + 1] += maxf(m[3] - m[1] * m[1], 0.0f);
+        vx[GRID_A_K] += q[0];
+        vx[GRID_A_K + 1] += maxf(q[1] - q[0] * q[0], 0.0f);
+        vx[GRID_A_FOAM] *= 1.0f - clamp01(q[2]);
     }
-    vx[GRID_A_POS + 0] = (float)rx + disp[0];
-    vx[GRID_A_POS + 1] = (float)ry + disp[1];
-    vx[GRID_A_POS + 2] += disp[2];
-    vx[GRID_A_SLOPE] = sl[0];
-    vx[GRID_A_SLOPE + 1] = sl[1];
-    vx[GRID_A_SVAR] = sv[0];
-    vx[GRID_A_SVAR + 1] = sv[1];
-    vx[GRID_A_K] = km;
-    vx[GRID_A_K + 1] = kv;
-    vx[GRID_A_FOAM] = 1.0f - clear;
 }
 
 static float far_distance(const struct camera *cam, float aspect)
@@ -393,32 +555,52 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
     }
     if (top <= bot)
         return 0;
+    /* Per row the ray is d = row + sx tx right with row = fwd + sy ty up; right is horizontal, so
+     * d_z and the sea-plane hit distance alt_ray / -d_z are the row's; a ray hits the plane
+     * within dmax when |d_xy| < -d_z dmax / alt_ray. */
+    double rgt[2] = { tx * right[0], tx * right[1] };
+    double dsx = 2.0 * (1.0 + margin) / (g->w - 1);   /* NDC x step between columns */
     for (int j = 0; j < g->h; j++) {
         double sy = top + (bot - top) * j / (g->h - 1);
-        for (int i = 0; i < g->w; i++) {
-            double sx = -1.0 - margin + 2.0 * (1.0 + margin) * i / (g->w - 1);
-            double d[3], t, dxy;
-            float *vx = verts + (size_t)(j * g->w + i) * GRID_FLOATS;
-            for (int c = 0; c < 3; c++)
-                d[c] = fwd[c] + sx * tx * right[c] + sy * ty * up[c];
-            dxy = sqrt(d[0] * d[0] + d[1] * d[1]);
+        double row[3], t_row = 0.0, lim2 = -1.0;
+        float *vx = verts + (size_t)j * g->w * GRID_FLOATS;
+        for (int c = 0; c < 3; c++)
+            row[c] = fwd[c] + sy * ty * up[c];
+        if (-row[2] > 0.0) {
+            double lim = -row[2] * dmax / alt_ray;
+            t_row = alt_ray / -row[2];
+            lim2 = lim * lim;
+        }
+        for (int i = 0; i < g->w; i++, vx += GRID_FLOATS) {
+            double sx = -1.0 - margin + dsx * i;
+            double dx = row[0] + sx * rgt[0], dy = row[1] + sx * rgt[1];
+            double dxy2 = dx * dx + dy * dy, t;
             /* Rays at or above the horizon end at the far distance along their azimuth. */
-            t = -d[2] * dmax > alt_ray * dxy ? alt_ray / -d[2] : dmax / (dxy > 1e-12 ? dxy : 1e-12);
-            vx[GRID_A_REST] = (float)(t * d[0]);
-            vx[GRID_A_REST + 1] = (float)(t * d[1]);
+            t = dxy2 < lim2 ? t_row : dmax / (dxy2 > 1e-24 ? sqrt(dxy2) : 1e-12);
+            vx[GRID_A_REST] = (float)(t * dx);
+            vx[GRID_A_REST + 1] = (float)(t * dy);
             vx[GRID_A_POS + 2] = (float)-alt;
         }
     }
-    for (int j = 0; j < g->h; j++)
-        for (int i = 0; i < g->w; i++) {
-            const float *a = verts + (size_t)(j * g->w + i) * GRID_FLOATS + GRID_A_REST;
-            const float *bx = a + (i + 1 < g->w ? GRID_FLOATS : -GRID_FLOATS);
-            const float *by = a + (j + 1 < g->h ? 1 : -1) * g->w * GRID_FLOATS;
+    /* footprint: the larger distance to the next vertex along the row and down the column (the
+     * previous one for the last) */
+    float lo = INFINITY, hi = 0.0f;
+    for (int j = 0; j < g->h; j++) {
+        const float *a = verts + (size_t)j * g->w * GRID_FLOATS + GRID_A_REST;
+        ptrdiff_t down = (j + 1 < g->h ? 1 : -1) * (ptrdiff_t)g->w * GRID_FLOATS;
+        float *foot = g->foot + (size_t)j * g->w;
+        for (int i = 0; i < g->w; i++, a += GRID_FLOATS) {
+            const float *bx = a + (i + 1 < g->w ? GRID_FLOATS : -GRID_FLOATS), *by = a + down;
             float fx = maxf(fabsf(bx[0] - a[0]), fabsf(bx[1] - a[1]));
             float fy = maxf(fabsf(by[0] - a[0]), fabsf(by[1] - a[1]));
-            g->foot[j * g->w + i] = maxf(fx, fy);
-            g->fade[j * g->w + i] = 1.0f;
+            float f = maxf(fx, fy);
+            foot[i] = f;
+            lo = f < lo ? f : lo;
+            hi = maxf(hi, f);
         }
+    }
+    g->foot_lo = g->foot_lo_wet = lo;
+    g->foot_hi = hi;
     return g->nidx;
 }
 
@@ -454,20 +636,23 @@ static int update_patches(struct grid *g, const struct camera *cam, float aspect
             vx[GRID_A_REST + 1] = (float)(oy + s * y);
             vx[GRID_A_POS + 2] = (float)-alt;
             g->foot[k * per + m] = foot;
-            g->fade[k * per + m] = 0.0f;
         }
     }
     for (int j = 0; j < NEAR_N; j++)
         for (int i = 0; i < NEAR_N; i++) {
             double x = -1.0 + 2.0 * i * inv, y = -1.0 + 2.0 * j * inv;
-            double edge = 1.0 - fmax(fabs(x), fabs(y));
             float *vx = verts + (size_t)(near0 + j * NEAR_N + i) * GRID_FLOATS;
             vx[GRID_A_REST] = (float)(ox + half * x);
             vx[GRID_A_REST + 1] = (float)(oy + half * y);
             vx[GRID_A_POS + 2] = (float)-alt;
             g->foot[near0 + j * NEAR_N + i] = (float)cell;
-            g->fade[near0 + j * NEAR_N + i] = (float)fmin(edge / NEAR_FADE, 1.0);
         }
+    /* the rings' footprints grow outwards from the near patch's cell; only the near patch has
+     * fade > 0 */
+    g->foot_lo = g->foot_lo_wet = (float)cell;
+    g->foot_hi = fmaxf((float)cell, g->foot[FAR_RINGS * per]);
+    for (int k = 0; k < FAR_RINGS * per; k += per)
+        g->foot_lo = fminf(g->foot_lo, g->foot[k]);
     return g->nidx;
 }
 
@@ -507,8 +692,10 @@ static void row_distances(struct grid *g, const float *verts)
         float m = INFINITY;
         for (int e = 0; e < 2; e++) {
             const float *v = verts + (size_t)(e ? b0 : a0) * GRID_FLOATS + GRID_A_REST;
-            for (int i = 0; i < n; i++, v += GRID_FLOATS)
-                m = fminf(m, v[0] * v[0] + v[1] * v[1]);
+            for (int i = 0; i < n; i++, v += GRID_FLOATS) {
+                float d2 = v[0] * v[0] + v[1] * v[1];
+                m = d2 < m ? d2 : m;    /* fminf is a libm call at -O2 on x86 */
+            }
         }
         g->row_foot[r] = m;
     }
@@ -516,21 +703,73 @@ static void row_distances(struct grid *g, const float *verts)
 
 int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts)
 {
-    double off[SWELL_MAX_PATTERNS][2];
-    int n;
-    blend_tables(g, t_s);
+    struct pattern_frame pf[SWELL_MAX_PATTERNS];
+    int n, np = 0;
     n = g->kind == 0 ? update_projected(g, cam, aspect, verts)
                      : update_patches(g, cam, aspect, verts);
     if (n == 0)
         return 0;
+    float foot_lo = g->foot_lo_wet > 1e-6f ? g->foot_lo_wet : 1e-6f;
     for (int i = 0; i < g->t->patterns; i++) {
+        struct grid_pattern *p = &g->p[i];
+        struct pattern_frame *f = &pf[np];
+        struct stream_phase ph;
         float o[2];
         grid_uv_offset(g->t, i, cam, o);
-        off[i][0] = o[0];
-        off[i][1] = o[1];
+        f->p = p;
+        f->lambda_m = p->lambda_m;
+        /* eq. 2's weight is 0 for every vertex when it is 0 at the smallest wet footprint (the
+         * float expressions are monotonic in the footprint) */
+        f->disp_on = p->lambda_m / foot_lo > FILTER_NMIN;
+        if (!f->disp_on && !p->cpu)
+            continue;
+        np++;
+        stream_loop_phase(t_s, tables_pattern_period(g->t, i), g->t->frames, &ph);
+        if (f->disp_on) {
+            int nx = p->disp->width, ny = p->disp->height;
+            f->kx = p->inv_l * nx;
+            f->ky = p->inv_l * ny;
+            f->x0 = (double)o[0] * nx - 0.5;
+            f->y0 = (double)o[1] * ny - 0.5;
+            image_phase(&p->disp_f, &ph);
+        }
+        if (p->cpu) {
+            int top = p->levels - 1, lo, hi;
+            f->lev_k = (float)p->slope->width * (float)p->inv_l;
+            lo = mip_level(g->foot_lo * f->lev_k, top);
+            hi = mip_level(g->foot_hi * f->lev_k, top);
+            for (int l = lo; l <= hi; l++) {
+                int lw = p->slope_f[l].w;
+                f->mk[l] = p->inv_l * lw;
+                f->mx0[l] = (double)o[0] * lw - 0.5;
+                f->my0[l] = (double)o[1] * lw - 0.5;
+                image_phase(&p->slope_f[l], &ph);
+                image_phase(&p->wc_f[l], &ph);
+            }
+        }
     }
-    for (int k = 0; k < g->nverts; k++)
-        shade_vertex(g, verts + (size_t)k * GRID_FLOATS, g->foot[k], g->fade[k], off);
+    int summed = 0;
+    for (int k = 0; k < g->nverts; k++) {
+        float *vx = verts + (size_t)k * GRID_FLOATS;
+        for (int c = GRID_A_SLOPE; c < GRID_A_FOAM; c++)
+            vx[c] = 0.0f;
+        vx[GRID_A_FOAM] = 1.0f;
+    }
+    for (int i = 0; i < np; i++)
+        if (pf[i].disp_on)
+            disp_pass(g, &pf[i], verts, g->acc, !summed++);
+    for (int i = 0; i < np; i++)
+        if (pf[i].p->cpu)
+            moment_pass(g, &pf[i], verts);
+    for (int k = 0; k < g->nverts; k++) {
+        float *vx = verts + (size_t)k * GRID_FLOATS;
+        static const float none[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+        const float *d = summed ? g->acc + 4 * (size_t)k : none;
+        vx[GRID_A_POS + 0] = vx[GRID_A_REST] + d[0];
+        vx[GRID_A_POS + 1] = vx[GRID_A_REST + 1] + d[1];
+        vx[GRID_A_POS + 2] += d[2];
+        vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
+    }
     row_distances(g, verts);
     return n;
 }

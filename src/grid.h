@@ -73,6 +73,10 @@ void grid_uv_offset(const struct swell_tables *t, int pattern, const struct came
 /* The wavelength eq. 2 weighs pattern i's band by (grid.c and ocean.vert's VTF grid). */
 float grid_band_wavelength(const struct swell_pattern_info *pi);
 
+/* Mip level of a CPU pattern's moment chain for a footprint of r level-0 texels: the level
+ * whose texel matches it, floor(log2 r) for r >= 2, else 0, at most levels - 1. */
+int grid_mip_level(float r, int levels);
+
 /* Bruneton 2010 eq. 2 filter weight w(a, b, x) = 3 x'^2 - 2 x'^3, x' = clamp((x-a)/(b-a)). */
 float grid_filter_weight(float a, float b, float x);
 

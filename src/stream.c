@@ -1,5 +1,6 @@
 /* stream.c - loop-frame blending of RGBA8 tables (stream.h). */
 #include <math.h>
+#include <string.h>
 #include "stream.h"
 
 void stream_loop_phase(double t_s, double period_s, int frames, struct stream_phase *out)
@@ -29,22 +30,54 @@ size_t stream_blended_bytes(const struct swell_table *t)
     return stream_level_offset(t, t->levels);
 }
 
+#define STREAM_BLOCK 16       /* bytes blended per vectorised block */
+
+/* 16 bytes of dst = a w0 + b w1, rounded: each 16-bit word holds two bytes, blended in place
+ * (the low byte shifted down, the high byte masked), so the products never leave 16 bits:
+ * a w0 + b w1 + 128 <= 255 * 256 + 128 < 2^16. A fixed block of restrict-qualified bytes is what
+ * -O2's very-cheap vectoriser accepts (no peeling, no runtime alias checks): one SSE2 or NEON
+ * vector per block, no intrinsics. The byte order of a word does not matter. */
+static inline void blend_block(uint8_t *restrict d, const uint8_t *restrict a,
+                               const uint8_t *restrict b, uint16_t w0, uint16_t w1)
+{
+    uint16_t x[STREAM_BLOCK / 2], y[STREAM_BLOCK / 2], z[STREAM_BLOCK / 2];
+    memcpy(x, a, STREAM_BLOCK);
+    memcpy(y, b, STREAM_BLOCK);
+    for (int k = 0; k < STREAM_BLOCK / 2; k++) {
+        uint16_t lo = (uint16_t)((x[k] & 0xffu) * w0 + (y[k] & 0xffu) * w1 + STREAM_W_ONE / 2);
+        uint16_t hi = (uint16_t)((x[k] >> 8) * w0 + (y[k] >> 8) * w1 + STREAM_W_ONE / 2);
+        z[k] = (uint16_t)((lo >> 8) | (hi & 0xff00u));
+    }
+    memcpy(d, z, STREAM_BLOCK);
+}
+
+/* d[i] = (a[i] w0 + b[i] w1 + 128) >> 8 for n bytes that do not overlap d (a may equal b). */
+static void stream_blend_bytes(uint8_t *restrict d, const uint8_t *restrict a,
+                               const uint8_t *restrict b, size_t n, int w)
+{
+    uint16_t w1 = (uint16_t)w, w0 = (uint16_t)(STREAM_W_ONE - w1);
+    size_t i = 0;
+    if (w1 == 0 || a == b) {
+        memcpy(d, a, n);
+        return;
+    }
+    /* two blocks per iteration halve the loop overhead (about 1.4 instructions a byte on x86) */
+    for (; i + 2 * STREAM_BLOCK <= n; i += 2 * STREAM_BLOCK) {
+        blend_block(d + i, a + i, b + i, w0, w1);
+        blend_block(d + i + STREAM_BLOCK, a + i + STREAM_BLOCK, b + i + STREAM_BLOCK, w0, w1);
+    }
+    if (i + STREAM_BLOCK <= n) {
+        blend_block(d + i, a + i, b + i, w0, w1);
+        i += STREAM_BLOCK;
+    }
+    for (; i < n; i++)
+        d[i] = (uint8_t)((uint16_t)(a[i] * w0 + b[i] * w1 + STREAM_W_ONE / 2) >> 8);
+}
+
 void stream_blend(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst)
 {
     int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0;
-    /* 16-bit arithmetic so compilers vectorise: a w0 + b w1 + 128 <= 255 * 256 + 128 < 2^16 */
-    uint16_t w1 = (uint16_t)ph->w, w0 = (uint16_t)(STREAM_W_ONE - w1);
-    for (int l = 0; l < t->levels; l++) {
-        const uint8_t *restrict a = t->data + table_offset(t, l, f0);
-        const uint8_t *restrict b = t->data + table_offset(t, l, f1);
-        size_t n = table_level_bytes(t, l);
-        uint8_t *restrict d = dst + stream_level_offset(t, l);
-        if (w1 == 0) {
-            for (size_t i = 0; i < n; i++)
-                d[i] = a[i];
-            continue;
-        }
-        for (size_t i = 0; i < n; i++)
-            d[i] = (uint8_t)((uint16_t)(a[i] * w0 + b[i] * w1 + STREAM_W_ONE / 2) >> 8);
-    }
+    for (int l = 0; l < t->levels; l++)
+        stream_blend_bytes(dst + stream_level_offset(t, l), t->data + table_offset(t, l, f0),
+                           t->data + table_offset(t, l, f1), table_level_bytes(t, l), ph->w);
 }

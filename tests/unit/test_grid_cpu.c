@@ -1,0 +1,269 @@
+/* test_grid_cpu.c - the CPU geometry's fast paths against brute-force references:
+ * stream_blend's vectorised blocks against the integer formula on random bytes of every level
+ * size, the mip level read from the float's exponent against the halving loop, and
+ * grid_update's displaced vertices and moments (lazily blended float tiles) against a direct
+ * double-precision evaluation of the same definitions from the RGBA8 tables.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "grid.h"
+#include "quantize.h"
+#include "stream.h"
+
+#define F 4
+
+static uint32_t rng = 12345u;
+static float frand(void)
+{
+    rng = rng * 1664525u + 1013904223u;
+    return (float)(rng >> 8) / 16777216.0f;
+}
+
+/* Pattern i's disp (n_geo, 1 level), slope and whitecap (n, all levels) tables of random,
+ * smooth-ish values (a few sines plus noise), quantised as the bake does. */
+static void add_pattern(struct swell_tables *s, int i, int n_geo, int n, float size_m,
+                        float amp_m)
+{
+    static const int kinds[3] = { TABLE_DISP, TABLE_SLOPE, TABLE_WHITECAP };
+    struct swell_err err;
+    s->pattern[i].size_m = size_m;
+    s->pattern[i].period_s = s->loop_period_s / (float)(i + 1);
+    for (int k = 0; k < 3; k++) {
+        struct swell_table *t = &s->table[s->count++];
+        int w = kinds[k] == TABLE_DISP ? n_geo : n, levels = 1;
+        while (kinds[k] != TABLE_DISP && (w >> (levels - 1)) > 1)
+            levels++;
+        float *chain = calloc(quantize_chain_floats(w, w, F, levels), sizeof(float));
+        assert_non_null(chain);
+        t->kind = kinds[k];
+        t->pattern = i;
+        t->format = FORMAT_RGBA8;
+        t->width = t->height = w;
+        t->layers = F;
+        t->levels = levels;
+        for (int f = 0; f < F; f++)
+            for (int y = 0; y < w; y++)
+                for (int x = 0; x < w; x++)
+                    for (int c = 0; c < 4; c++) {
+                        double ph = 2 * M_PI * (x * (c + 1) + y * (2 - c % 2)) / w + f * 1.3 + c;
+                        chain[(((size_t)f * w + y) * w + x) * 4 + c] =
+                            (float)(amp_m * (sin(ph) + 0.2 * frand()) + (c == 2 ? 0.5 : 0.0));
+                    }
+        quantize_build_mips(chain, w, w, F, levels);
+        assert_int_equal(quantize_table(t, chain, &err), 0);
+        free(chain);
+    }
+}
+
+static void make_tables(struct swell_tables *s)
+{
+    memset(s, 0, sizeof(*s));
+    s->patterns = 2;
+    s->frames = F;
+    s->loop_period_s = 4.0f;
+    add_pattern(s, 0, 16, 32, 60.0f, 1.5f);
+    add_pattern(s, 1, 8, 16, 7.0f, 0.3f);
+}
+
+/* Every byte of every level (1x1 to 64x64: every tail of the 16- and 32-byte blocks) against
+ * (a w0 + b w1 + 128) >> 8, for weights 0 (the copy), 1, 255 and others. */
+static void test_stream_blend_exact(void **state)
+{
+    struct swell_table t;
+    struct swell_err err;
+    (void)state;
+    memset(&t, 0, sizeof(t));
+    t.format = FORMAT_RGBA8;
+    t.width = t.height = 64;
+    t.layers = 3;
+    t.levels = 7;
+    assert_int_equal(table_alloc(&t, &err), 0);
+    for (size_t i = 0; i < table_bytes(&t); i++)
+        t.data[i] = (uint8_t)(frand() * 256.0f);
+    uint8_t *dst = malloc(stream_blended_bytes(&t));
+    static const int ws[] = { 0, 1, 37, 128, 200, 255 };
+    for (size_t k = 0; k < sizeof(ws) / sizeof(ws[0]); k++) {
+        struct stream_phase ph = { .f0 = 2, .f1 = 0, .w = ws[k] };
+        memset(dst, 0xa5, stream_blended_bytes(&t));
+        stream_blend(&t, &ph, dst);
+        for (int l = 0; l < t.levels; l++) {
+            const uint8_t *a = t.data + table_offset(&t, l, 2), *b = t.data + table_offset(&t, l, 0);
+            const uint8_t *d = dst + stream_level_offset(&t, l);
+            for (size_t i = 0; i < table_level_bytes(&t, l); i++) {
+                unsigned ref = (a[i] * (256u - (unsigned)ws[k]) + b[i] * (unsigned)ws[k] + 128u) >> 8;
+                assert_int_equal(d[i], ref);
+            }
+        }
+    }
+    free(dst);
+    free(t.data);
+}
+
+static int mip_loop(float r, int levels)
+{
+    int lev = 0;
+    while (r >= 2.0f && lev < levels - 1) {
+        r *= 0.5f;
+        lev++;
+    }
+    return lev;
+}
+
+/* grid_mip_level against the halving loop it replaces, at powers of two, their neighbours,
+ * random values over 40 octaves and the odd cases. */
+static void test_mip_level(void **state)
+{
+    (void)state;
+    static const float odd[] = { 0.0f, -0.0f, -3.0f, 1e-40f, 1.0f, 1.9999999f, 2.0f, INFINITY,
+                                 -INFINITY, NAN, 3.4e38f };
+    for (int levels = 1; levels <= 12; levels++) {
+        for (size_t i = 0; i < sizeof(odd) / sizeof(odd[0]); i++)
+            assert_int_equal(grid_mip_level(odd[i], levels), mip_loop(odd[i], levels));
+        for (int e = -20; e < 20; e++) {
+            float p = ldexpf(1.0f, e);
+            assert_int_equal(grid_mip_level(p, levels), mip_loop(p, levels));
+            assert_int_equal(grid_mip_level(nextafterf(p, 0.0f), levels),
+                             mip_loop(nextafterf(p, 0.0f), levels));
+            assert_int_equal(grid_mip_level(nextafterf(p, INFINITY), levels),
+                             mip_loop(nextafterf(p, INFINITY), levels));
+        }
+        for (int k = 0; k < 10000; k++) {
+            float r = ldexpf(frand(), (int)(frand() * 40.0f) - 10);
+            assert_int_equal(grid_mip_level(r, levels), mip_loop(r, levels));
+        }
+    }
+}
+
+/* Dequantised blend of loop frames in double: bias + scale / 255 (a (1 - w) + b w), the blend
+ * rounded to a byte for the moment tables (as stream_blend gives the fragment shader). */
+static double texel(const struct swell_table *t, int level, const struct stream_phase *ph,
+                    int x, int y, int c)
+{
+    int n = table_level_width(t, level);
+    x &= n - 1;
+    y &= n - 1;
+    size_t o = 4 * ((size_t)y * n + x) + c;
+    double a = t->data[table_offset(t, level, ph->f0) + o];
+    double b = t->data[table_offset(t, level, ph->f1) + o];
+    double w = ph->w / (double)STREAM_W_ONE;
+    double v = a * (1.0 - w) + b * w;
+    if (t->kind != TABLE_DISP)
+        v = floor(v + 0.5);    /* (a w0 + b w1 + 128) >> 8: v is an exact multiple of 1/256 */
+    return t->bias[c] + t->scale[c] / 255.0 * v;
+}
+
+static double bilinear(const struct swell_table *t, int level, const struct stream_phase *ph,
+                       double u, double v, int c)
+{
+    int n = table_level_width(t, level);
+    double x = u * n - 0.5, y = v * n - 0.5, fx, fy;
+    int ix = (int)floor(x), iy = (int)floor(y);
+    fx = x - ix;
+    fy = y - iy;
+    return (1 - fy) * ((1 - fx) * texel(t, level, ph, ix, iy, c) + fx * texel(t, level, ph, ix + 1, iy, c)) +
+           fy * ((1 - fx) * texel(t, level, ph, ix, iy + 1, c) + fx * texel(t, level, ph, ix + 1, iy + 1, c));
+}
+
+/* grid_update's vertices against the definitions evaluated directly: rest + sum_i w_i D_i with
+ * Bruneton eq. 2's w_i for the vertex's footprint, and pattern 0's (the CPU pattern's) moments
+ * at the mip level of the footprint; over changing phases (tiles re-blended), a repeated phase
+ * and a return to an earlier one. */
+static void test_grid_against_reference(void **state)
+{
+    struct swell_tables s;
+    struct grid *g;
+    struct grid_desc d = { 0 };
+    struct camera c;
+    struct swell_err err;
+    int w = 33, h = 25, checked_disp = 0, checked_zero = 0;
+    static const double times[] = { 0.0, 0.37, 0.37, 1.91, 0.37, 3.99 };
+    (void)state;
+    make_tables(&s);
+    d.tables = &s;
+    d.w = w;
+    d.h = h;
+    d.cpu_patterns = 1u;
+    assert_int_equal(grid_create(&d, &g, &err), 0);
+    float *verts = calloc((size_t)grid_vertex_count(g) * GRID_FLOATS, sizeof(float));
+    camera_defaults(&c);
+    c.pos[0] = 1234.5;
+    c.pos[1] = -321.25;
+    c.pos[2] = 6.0;
+    c.heading_deg = 70.0f;
+    c.pitch_deg = -20.0f;
+    for (size_t ti = 0; ti < sizeof(times) / sizeof(times[0]); ti++) {
+        double t_s = times[ti];
+        struct stream_phase ph[2];
+        float off[2][2];
+        assert_true(grid_update(g, &c, 16.0f / 9.0f, t_s, verts) > 0);
+        for (int i = 0; i < 2; i++) {
+            stream_loop_phase(t_s, tables_pattern_period(&s, i), F, &ph[i]);
+            grid_uv_offset(&s, i, &c, off[i]);
+        }
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) {
+                const float *vx = verts + (size_t)(j * w + i) * GRID_FLOATS;
+                const float *bx = vx + (i + 1 < w ? 1 : -1) * GRID_FLOATS;
+                const float *by = vx + (j + 1 < h ? 1 : -1) * w * GRID_FLOATS;
+                double rx = vx[GRID_A_REST], ry = vx[GRID_A_REST + 1];
+                double foot = fmax(fmax(fabs(bx[GRID_A_REST] - rx), fabs(bx[GRID_A_REST + 1] - ry)),
+                                   fmax(fabs(by[GRID_A_REST] - rx), fabs(by[GRID_A_REST + 1] - ry)));
+                double disp[3] = { 0, 0, 0 };
+                for (int p = 0; p < 2; p++) {
+                    const struct swell_table *dt = tables_find(&s, TABLE_DISP, p);
+                    double lambda = grid_band_wavelength(&s.pattern[p]);
+                    double wgt = grid_filter_weight(2.0f, 4.0f, (float)(lambda / fmax(foot, 1e-6)));
+                    double u = off[p][0] + rx / s.pattern[p].size_m;
+                    double v = off[p][1] + ry / s.pattern[p].size_m;
+                    for (int k = 0; k < 3 && wgt > 0.0; k++)
+                        disp[k] += wgt * bilinear(dt, 0, &ph[p], u, v, k);
+                }
+                double ref[3] = { rx + disp[0], ry + disp[1], -c.pos[2] + disp[2] };
+                for (int k = 0; k < 3; k++)
+                    assert_true(fabs(vx[GRID_A_POS + k] - ref[k]) <= 2e-5 * fmax(1.0, fabs(ref[k])));
+                if (fabs(disp[2]) > 1e-3)
+                    checked_disp++;
+                else
+                    checked_zero++;
+                /* pattern 0's moments, within a hundredth of a quantisation step */
+                const struct swell_table *st = tables_find(&s, TABLE_SLOPE, 0);
+                const struct swell_table *wt = tables_find(&s, TABLE_WHITECAP, 0);
+                int lev = mip_loop((float)(foot * st->width / s.pattern[0].size_m), st->levels);
+                double u = off[0][0] + rx / s.pattern[0].size_m, v = off[0][1] + ry / s.pattern[0].size_m;
+                double m[4], q[4];
+                for (int k = 0; k < 4; k++) {
+                    m[k] = bilinear(st, lev, &ph[0], u, v, k);
+                    q[k] = bilinear(wt, lev, &ph[0], u, v, k);
+                }
+                double tol_s = 0.01 * st->scale[0] / 255.0, tol_w = 0.01 * wt->scale[0] / 255.0;
+                assert_true(fabs(vx[GRID_A_SLOPE] - m[0]) <= tol_s + 1e-6);
+                assert_true(fabs(vx[GRID_A_SLOPE + 1] - m[1]) <= 0.01 * st->scale[1] / 255.0 + 1e-6);
+                assert_true(fabs(vx[GRID_A_SVAR] - fmax(m[2] - m[0] * m[0], 0.0)) <= 1e-3 * st->scale[2] / 255.0 + 1e-5);
+                assert_true(fabs(vx[GRID_A_K] - q[0]) <= tol_w + 1e-6);
+                assert_true(fabs(vx[GRID_A_K + 1] - fmax(q[1] - q[0] * q[0], 0.0)) <= 0.02 * wt->scale[1] / 255.0 + 1e-5);
+                assert_true(fabs(vx[GRID_A_FOAM] - fmin(fmax(q[2], 0.0), 1.0)) <= 0.01 * wt->scale[2] / 255.0 + 1e-6);
+            }
+    }
+    /* the view covers displaced near vertices and fully filtered far ones */
+    assert_true(checked_disp > 100);
+    assert_true(checked_zero > 10);
+    free(verts);
+    grid_destroy(g);
+    tables_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_stream_blend_exact),
+        cmocka_unit_test(test_mip_level),
+        cmocka_unit_test(test_grid_against_reference),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
