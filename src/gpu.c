@@ -221,6 +221,11 @@ static uint64_t texture_bytes(int w, int h, int levels, int texel)
 
 static int is_pot(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
+GLenum gpu_half_type(const struct gpu *g)
+{
+    return g->caps.context_major >= 3 ? SWELL_GL_HALF_FLOAT : SWELL_GL_HALF_FLOAT_OES;
+}
+
 int gpu_texture_create(struct gpu *g, int width, int height, int levels, int format, int repeat,
                        const char *what, GLuint *tex, struct swell_err *err)
 {

@@ -66,6 +66,8 @@ void gpu_release(struct gpu *g, uint64_t bytes);
 
 /* Texture helpers going through the accounting point. format: enum table_format.
  * levels 1 = no mips. Allocates storage (NULL data), wrap REPEAT or CLAMP by `repeat`. */
+/* The pixel type FORMAT_RGBA16F texels are uploaded with (GLES 3 core or OES_texture_half_float). */
+GLenum gpu_half_type(const struct gpu *g);
 int  gpu_texture_create(struct gpu *g, int width, int height, int levels, int format, int repeat,
                         const char *what, GLuint *tex, struct swell_err *err);
 void gpu_texture_destroy(struct gpu *g, GLuint *tex);

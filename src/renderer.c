@@ -113,6 +113,7 @@ struct renderer {
     struct grid_projection proj;
     GLuint fresnel_tex, sky_tex, vbo, ibo, quad_vbo;
     GLuint sky_display_tex;           /* the sky map tone-mapped: background, low quality */
+    int sky_half;                     /* sky_tex holds half-float radiances (scale 1) */
     GLuint fresnel_sun_tex;           /* low: A Fresnel, R Hu's Phong term for this sun */
     const struct swell_table *fresnel;
     uint8_t *scratch;                 /* derived textures are built here */
@@ -287,18 +288,38 @@ static int choose_vtf(const struct renderer *r)
     return 1;
 }
 
-static int upload_chain(GLuint tex, int w, int h, int levels, const uint8_t *data,
-                        const char *what, struct swell_err *err)
+/* A texture's mip chain, level-major and tightly packed: RGBA8, or with type the GL half-float
+ * type, RGBA16F (upload_chain_typed). */
+static int upload_chain_typed(GLuint tex, int w, int h, int levels, const void *data, GLenum type,
+                              const char *what, struct swell_err *err)
 {
-    size_t off = 0;
+    size_t off = 0, texel = type == GL_UNSIGNED_BYTE ? 4 : 8;
     glBindTexture(GL_TEXTURE_2D, tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int l = 0; l < levels; l++) {
         int lw = w >> l > 0 ? w >> l : 1, lh = h >> l > 0 ? h >> l : 1;
-        glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, lw, lh, GL_RGBA, GL_UNSIGNED_BYTE, data + off);
-        off += 4 * (size_t)lw * lh;
+        glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, lw, lh, GL_RGBA, type,
+                        (const uint8_t *)data + off);
+        off += texel * (size_t)lw * lh;
     }
     return gpu_check(what, err);
+}
+
+static int upload_chain(GLuint tex, int w, int h, int levels, const uint8_t *data,
+                        const char *what, struct swell_err *err)
+{
+    return upload_chain_typed(tex, w, h, levels, data, GL_UNSIGNED_BYTE, what, err);
+}
+
+/* The HDR sky map of high quality: half-float radiances where the tier has half-float
+ * textures (no 8-bit steps in the dark zenith), else RGBA8 times sky.map_scale. */
+static int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err *err)
+{
+    if (r->sky_half)
+        return upload_chain_typed(r->sky_tex, sk->size, sk->size, sk->levels, sk->half,
+                                  gpu_half_type(r->gpu), "renderer: sky upload (half)", err);
+    return upload_chain(r->sky_tex, sk->size, sk->size, sk->levels, sk->data,
+                        "renderer: sky upload", err);
 }
 
 static void update_exposure(struct renderer *r);
@@ -468,10 +489,11 @@ static int create_textures(struct renderer *r, struct swell_err *err)
         (rc = upload_sky_display(r, err)))
         return rc;
     if (r->d.quality == QUALITY_HIGH) {
+        r->sky_half = r->gpu->caps.half_float;
         if ((rc = gpu_texture_create(r->gpu, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels,
-                                     FORMAT_RGBA8, 0, "renderer: sky map", &r->sky_tex, err)) ||
-            (rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, r->sky.data,
-                               "renderer: sky upload", err)))
+                                     r->sky_half ? FORMAT_RGBA16F : FORMAT_RGBA8, 0,
+                                     "renderer: sky map", &r->sky_tex, err)) ||
+            (rc = upload_sky(r, &r->sky, err)))
             return rc;
     } else if ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
                                         "renderer: Fresnel-sun texture", &r->fresnel_sun_tex,
@@ -672,8 +694,7 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     int rc = sky_bake(elev_deg, azim_deg, SKY_MAP_SIZE, &fresh, err);
     if (rc)
         return rc;
-    if (r->sky_tex && (rc = upload_chain(r->sky_tex, SKY_MAP_SIZE, SKY_MAP_SIZE, fresh.levels,
-                                         fresh.data, "renderer: sky upload", err))) {
+    if (r->sky_tex && (rc = upload_sky(r, &fresh, err))) {
         sky_destroy(&fresh);
         return rc;
     }
@@ -847,7 +868,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
     glUniform3fv(u[OU_CONST_K], 1, ck);
     bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(UNIT_SKY, r->sky_tex, u[OU_SKY_TEX]);
-    glUniform1f(u[OU_SKY_SCALE], e * r->sky.map_scale);
+    glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));
     glUniform1f(u[OU_SKY_SIZE], (float)r->sky.size);
     glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
     glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
@@ -1022,6 +1043,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "fetches: per run of rows only the patterns not fully filtered there; whitecaps of %d "
         "pattern(s)\n"
         "fragment precision: %s\n"
+        "sky map: %s\n"
         "shading: %s\n",
         gpu_tier_name(r->gpu->caps.tier), r->gpu->caps.texture_units,
         geometry_kind_name(r->d.geometry),
@@ -1033,6 +1055,9 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",
+        r->sky_half ? "half-float radiances (RGBA16F), tone-mapped RGBA8 copy for the background"
+        : r->d.quality == QUALITY_HIGH ? "RGBA8 with a scale, tone-mapped RGBA8 copy for the background"
+                                       : "tone-mapped RGBA8 (display space)",
         r->d.quality == QUALITY_HIGH
             ? shader_has_gradients(&r->gpu->caps)
               ? "high: Ross BRDF sun (eq. 15), sky map filtered with explicit gradients (eq. 27, "

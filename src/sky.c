@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "quantize.h"
 #include "sky.h"
 
 static const float tau_r[3] = { 0.0464f, 0.108f, 0.265f };
@@ -58,7 +59,9 @@ void sky_destroy(struct sky *s)
     if (!s)
         return;
     free(s->data);
+    free(s->half);
     s->data = NULL;
+    s->half = NULL;
 }
 
 int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct swell_err *err)
@@ -83,7 +86,8 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
     }
     lin = malloc(sizeof(float) * 3 * (size_t)size * size);
     out->data = malloc(sky_level_offset(out, levels));
-    if (!lin || !out->data) {
+    out->half = malloc(sky_level_offset(out, levels) * sizeof(uint16_t));
+    if (!lin || !out->data || !out->half) {
         free(lin);
         sky_destroy(out);
         return swell_fail(err, SWELL_E_NOMEM, "sky: no memory for a %d^2 sky map", size);
@@ -124,13 +128,16 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
     for (int l = 0; l < levels; l++) {
         int m = size >> l;
         uint8_t *dst = out->data + sky_level_offset(out, l);
+        uint16_t *hdst = out->half + sky_level_offset(out, l);
         for (int j = 0; j < m; j++)
             for (int i = 0; i < m; i++) {
                 for (int c = 0; c < 3; c++) {
-                    float v = lin[3 * ((size_t)j * m + i) + c] / maxv;
+                    float rad = lin[3 * ((size_t)j * m + i) + c], v = rad / maxv;
                     dst[4 * ((size_t)j * m + i) + c] = (uint8_t)(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f + 0.5f);
+                    hdst[4 * ((size_t)j * m + i) + c] = quantize_half_from_float(rad);
                 }
                 dst[4 * ((size_t)j * m + i) + 3] = 255;
+                hdst[4 * ((size_t)j * m + i) + 3] = quantize_half_from_float(1.0f);
             }
         if (m > 1)
             for (int j = 0; j < m / 2; j++)

@@ -23,6 +23,7 @@ struct sky {
     float map_scale;        /* texel value v / 255 * map_scale = radiance, per channel */
     int size, levels;       /* sky map: size x size, full mip chain */
     uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed */
+    uint16_t *half;         /* the same levels as IEEE half radiances (no scale): RGBA16F */
 };
 
 /* Sky radiance towards unit direction dir (z up); below the horizon the horizon's. */

@@ -200,6 +200,19 @@ static void test_sky_irradiance(void **state)
         for (int c = 0; c < 3; c++)
             assert_true(fabs(t[c] / 255.0 * s.map_scale - l[c]) < 0.02 * s.map_scale);
     }
+    /* the half-float chain holds the same radiances unscaled: every texel of every level within
+     * half of the RGBA8 step (its rounding) plus half precision (2^-11 relative) */
+    for (int l = 0; l < s.levels; l++) {
+        int m = s.size >> l;
+        const uint8_t *q = s.data + sky_level_offset(&s, l);
+        const uint16_t *h = s.half + sky_level_offset(&s, l);
+        for (int i = 0; i < m * m; i++)
+            for (int c = 0; c < 4; c++) {
+                float v = quantize_float_from_half(h[4 * i + c]);
+                float ref = c == 3 ? 1.0f : q[4 * i + c] / 255.0f * s.map_scale;
+                assert_true(fabsf(v - ref) <= 0.5f / 255.0f * s.map_scale + fabsf(ref) / 2048.0f);
+            }
+    }
     sky_destroy(&s);
 }
 
