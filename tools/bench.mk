@@ -12,3 +12,8 @@ export BENCH_OUT BENCH_SCENES BENCH_PATHS BENCH_QUALITIES BENCH_TIERS BENCH_SIZE
 .PHONY: bench
 bench: deps $(SWELL) $(SWELL_BAKE)
 	@tools/bench.sh $(BUILD)
+
+# The README's pictures (docs/*.png), every command listed in tools/pictures.sh.
+.PHONY: pictures
+pictures: deps $(SWELL)
+	@tools/pictures.sh $(BUILD)

@@ -1,0 +1,21 @@
+#!/bin/sh
+# pictures.sh BUILD - render the README's pictures (docs/*.png) with BUILD/swell, each scene's
+# whole command listed here so a picture can be checked against the program that made it.
+# Offscreen (surfaceless), 640x360, the best tier the GL context offers.
+set -eu
+build=${1:-build/rel}
+swell="$build/swell"
+[ -x "$swell" ] || { echo "pictures: $swell not built (make $swell)" >&2; exit 2; }
+mkdir -p docs
+shot() {   # shot NAME ARGS...
+    name=$1
+    shift
+    echo "pictures: docs/$name.png: swell $*"
+    "$swell" --platform surfaceless --size 640x360 --frames 1 --time 4 "$@" \
+        --out "docs/$name.png" >/dev/null
+}
+shot moderate      --preset moderate --camera 0,0,12 --pitch -8 --heading 20 --sun 35,120
+shot moderate_low  --preset moderate --camera 0,0,12 --pitch -8 --heading 20 --sun 35,120 --quality low
+shot glint         --preset moderate --camera 0,0,8 --pitch -4 --heading 0 --sun 7,0
+shot storm         --preset storm --camera 0,0,20 --pitch -14 --heading 60 --sun 40,200
+shot altitude_1km  --preset moderate --path 1km --sun 30,20
