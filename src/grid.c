@@ -531,30 +531,44 @@ static void basis(const struct camera *cam, double fwd[3], double right[3], doub
 }
 
 /* Bruneton 2010 §3 / Hinsinger 2002: screen-space grid rays intersected with the sea plane. */
-static int update_projected(struct grid *g, const struct camera *cam, float aspect, float *verts)
+/* The projected grid's frame for a camera (grid.h); 0 when no sea is in view. */
+static int projection_frame(const struct grid *g, const struct camera *cam, float aspect,
+                            struct grid_projection *p)
 {
-    double fwd[3], right[3], up[3];
     double alt = cam->pos[2] > 0.5 ? cam->pos[2] : 0.5;
+    double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
+    memset(p, 0, sizeof(*p));
+    p->alt = alt;
     /* Rays meet a plane raised by the highest crest (at most half-way up to the camera), so
      * crests near the screen's bottom edge never uncover it; rest points stay on z = -alt. */
-    double alt_ray = fmax(alt - g->crest_m, 0.5 * alt);
-    double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
-    double ty = tan(0.5 * fov), tx = ty * aspect;
-    double dmax = far_distance(cam, aspect);
+    p->alt_ray = fmax(alt - g->crest_m, 0.5 * alt);
+    p->ty = tan(0.5 * fov);
+    p->tx = p->ty * aspect;
+    p->dmax = far_distance(cam, aspect);
     /* Choppy displacement pulls the edge vertices sideways by up to chop_m, and a crest lifts a
      * bottom-edge vertex by up to crest_m; at the nearest visible distance (about alt_ray) that
      * is an angle of (chop_m + crest_m) / alt_ray, so widen the grid's margin by as much in NDC
      * (the storm golden frame showed an uncovered corner with the sideways term alone). */
-    double margin = GRID_MARGIN + fmin((g->chop_m + g->crest_m) / alt_ray / ty, 1.5);
-    double top = 1.0 + margin, bot = -1.0 - margin;
-    basis(cam, fwd, right, up);
-    if (up[2] * ty > 1e-9) {
-        double hz = -fwd[2] / (ty * up[2]);   /* NDC y of the horizon */
-        if (hz < top)
-            top = hz;
+    p->margin = GRID_MARGIN + fmin((g->chop_m + g->crest_m) / p->alt_ray / p->ty, 1.5);
+    p->top = 1.0 + p->margin;
+    p->bot = -1.0 - p->margin;
+    basis(cam, p->fwd, p->right, p->up);
+    if (p->up[2] * p->ty > 1e-9) {
+        double hz = -p->fwd[2] / (p->ty * p->up[2]);   /* NDC y of the horizon */
+        if (hz < p->top)
+            p->top = hz;
     }
-    if (top <= bot)
+    return p->top > p->bot;
+}
+
+static int update_projected(struct grid *g, const struct camera *cam, float aspect, float *verts)
+{
+    struct grid_projection p;
+    if (!projection_frame(g, cam, aspect, &p))
         return 0;
+    const double *fwd = p.fwd, *right = p.right, *up = p.up;
+    double alt = p.alt, alt_ray = p.alt_ray, tx = p.tx, ty = p.ty, dmax = p.dmax;
+    double margin = p.margin, top = p.top, bot = p.bot;
     /* Per row the ray is d = row + sx tx right with row = fwd + sy ty up; right is horizontal, so
      * d_z and the sea-plane hit distance alt_ray / -d_z are the row's; a ray hits the plane
      * within dmax when |d_xy| < -d_z dmax / alt_ray. */
@@ -782,24 +796,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
 int grid_projection(struct grid *g, const struct camera *cam, float aspect,
                     struct grid_projection *p)
 {
-    double alt = cam->pos[2] > 0.5 ? cam->pos[2] : 0.5;
-    double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
-    memset(p, 0, sizeof(*p));
-    p->alt = alt;
-    p->alt_ray = fmax(alt - g->crest_m, 0.5 * alt);
-    p->ty = tan(0.5 * fov);
-    p->tx = p->ty * aspect;
-    p->dmax = far_distance(cam, aspect);
-    p->margin = GRID_MARGIN + fmin((g->chop_m + g->crest_m) / p->alt_ray / p->ty, 1.5);
-    p->top = 1.0 + p->margin;
-    p->bot = -1.0 - p->margin;
-    basis(cam, p->fwd, p->right, p->up);
-    if (p->up[2] * p->ty > 1e-9) {
-        double hz = -p->fwd[2] / (p->ty * p->up[2]);
-        if (hz < p->top)
-            p->top = hz;
-    }
-    if (g->kind != 0 || p->top <= p->bot)
+    if (!projection_frame(g, cam, aspect, p) || g->kind != 0)
         return 0;
     for (int r = 0; r < g->rows; r++) {
         /* row r spans grid rows r (farther) and r + 1 (nearer) */
