@@ -39,7 +39,7 @@ cg_paths=${BENCH_CG_PATHS:-$paths}
 # Swell's own CPU work per frame (renderer.c calls these from renderer_frame; check with nm):
 # grid projection + displacement, loop-frame blending; and the texture upload of the blend.
 cg_own="grid_update grid_projection stream_blend"
-cg_upload="upload_chain"
+cg_upload="upload_chain_typed"
 
 die() { echo "bench: $*" >&2; exit 1; }
 
