@@ -8,6 +8,8 @@ bake="$build/swell-bake"; swell="$build/swell"
 
 if ! "$bake" inspect "$tables" >/dev/null 2>&1; then
     echo "swell: baking the default sea state into $tables"
+    # the report goes beside the tables; swell-bake refuses a missing folder before baking
+    mkdir -p "$(dirname "$tables")"
     "$bake" --preset default --out "$tables" --report "$tables.json"
 fi
 "$bake" inspect "$tables"
