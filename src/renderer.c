@@ -39,8 +39,9 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
     "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sea_radiance", "foam_radiance",
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
-    "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var", "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0", "wc_tex1",
-    "wc_tex2", "wc_tex3"
+    "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var",
+    "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
+    "wc_tex1", "wc_tex2", "wc_tex3"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -84,7 +85,6 @@ struct fs_slot {
     const struct swell_table *slope, *wc;
     GLuint slope_tex, wc_tex;
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
-    int breaks;                       /* whitecap table not constant: fetched in high quality */
     float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
@@ -127,7 +127,6 @@ struct renderer {
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
     int draws;                        /* sea draws in the last frame */
-    long long fetched_rows[SWELL_MAX_PATTERNS + 1];   /* indices drawn per variant, all frames */
 };
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
@@ -256,7 +255,6 @@ static void assign_patterns(struct renderer *r)
         sl->pattern = order[n - fs + s];
         sl->slope = tables_find(r->t, TABLE_SLOPE, sl->pattern);
         sl->wc = tables_find(r->t, TABLE_WHITECAP, sl->pattern);
-        sl->breaks = breaks[n - fs + s];
     }
 }
 
@@ -810,6 +808,14 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
     glDisable(GL_SCISSOR_TEST);
 }
 
+/* A slot whose whitecaps are not fetched enters Dupuy's sums as its patch's constants. */
+static void add_k_constants(const struct fs_slot *sl, float ck[3])
+{
+    ck[0] += sl->top_k[0];
+    ck[1] += sl->top_k[1];
+    ck[2] *= sl->top_k[2];
+}
+
 /* Uniforms of the variant fetching the first k slots; slots k.. enter as their constants. */
 static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *cam,
                                mat4 world_to_clip)
@@ -827,11 +833,10 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
     for (int s = 0; s < r->nfs; s++) {
         struct fs_slot *sl = &r->slot[s];
         if (s >= k) {
-            for (int c = 0; c < 4; c++)
-                cs[c] += sl->top_slope[c];
-            ck[0] += sl->top_k[0];
-            ck[1] += sl->top_k[1];
-            ck[2] *= sl->top_k[2];
+            /* const_slope.xy stays 0: the means are in lin_s0 (ocean.vert) */
+            cs[2] += sl->top_slope[2];
+            cs[3] += sl->top_slope[3];
+            add_k_constants(sl, ck);
             continue;
         }
         grid_uv_offset(r->t, sl->pattern, cam, off[s]);
@@ -841,14 +846,10 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
         bind_tex(UNIT_PATTERNS + s, sl->slope_tex, u[OU_SLOPE_TEX0 + s]);
-        if (sl->wc_tex && s < r->nwc)
+        if (s < r->nwc)   /* whitecap textures exist exactly for these (create_textures) */
             bind_tex(UNIT_PATTERNS + r->nfs + s, sl->wc_tex, u[OU_WC_TEX0 + s]);
-        else if (sl->wc_tex == 0) {
-            /* high quality, not fetched: the constant table's moments */
-            ck[0] += sl->top_k[0];
-            ck[1] += sl->top_k[1];
-            ck[2] *= sl->top_k[2];
-        }
+        else
+            add_k_constants(sl, ck);
     }
     /* Radiances arrive scaled by the exposure (tone_map in common.glsl takes them so). */
     for (int c = 0; c < 3; c++) {
@@ -952,7 +953,6 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;
-            r->fetched_rows[run_k] += run_count;
         }
         run_first = first;
         run_count = count;

@@ -395,6 +395,16 @@ static void test_set_sun(void **state)
     gpu_shutdown(&gpu);
 }
 
+/* RMSE over the colour channels of two W x H RGBA frames, in 8-bit levels. */
+static double rmse_rgb(const uint8_t *a, const uint8_t *b)
+{
+    double se = 0.0;
+    for (int k = 0; k < W * H * 4; k++)
+        if (k % 4 != 3)
+            se += ((double)a[k] - b[k]) * ((double)a[k] - b[k]);
+    return sqrt(se / (W * H * 3.0));
+}
+
 /* gles2-min (mediump, CPU geometry, eq. 27 by LOD bias) against the best tier the context
  * offers (there: vertex-shader geometry, textureGrad, highp on llvmpipe): RMSE below 6 of 255. */
 static void test_tiers(void **state)
@@ -402,7 +412,6 @@ static void test_tiers(void **state)
     struct camera c;
     struct gpu probe;
     struct swell_err err;
-    double se = 0.0;
     (void)state;
     assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
     int best = probe.caps.tier_available;
@@ -412,10 +421,7 @@ static void test_tiers(void **state)
     surface_camera(&c);
     render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
     render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
-    for (int k = 0; k < W * H * 4; k++)
-        if (k % 4 != 3)
-            se += ((double)fx.img[k] - fx.img2[k]) * ((double)fx.img[k] - fx.img2[k]);
-    double rmse = sqrt(se / (W * H * 3.0));
+    double rmse = rmse_rgb(fx.img, fx.img2);
     print_message("gles2-min vs %s: RMSE %.2f / 255\n", gpu_tier_name(best), rmse);
     assert_true(rmse < 6.0);
 }
@@ -427,7 +433,6 @@ static void test_vtf_geometry(void **state)
     struct camera c;
     struct gpu probe;
     struct swell_err err;
-    double se = 0.0;
     (void)state;
     assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
     int best = probe.caps.tier_available, vunits = probe.caps.vertex_texture_units;
@@ -441,10 +446,7 @@ static void test_vtf_geometry(void **state)
     g_cpu_geometry = 0;
     render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
     assert_int_equal(g_vtf_used, 1);
-    for (int k = 0; k < W * H * 4; k++)
-        if (k % 4 != 3)
-            se += ((double)fx.img[k] - fx.img2[k]) * ((double)fx.img[k] - fx.img2[k]);
-    double rmse = sqrt(se / (W * H * 3.0));
+    double rmse = rmse_rgb(fx.img, fx.img2);
     print_message("%s: CPU grid vs vertex-shader grid: RMSE %.3f / 255\n", gpu_tier_name(best), rmse);
     assert_true(rmse < 1.0);
 }
@@ -460,17 +462,13 @@ static void test_fetch_runs(void **state)
     c.pos[2] = 1000.0;
     c.pitch_deg = -20.0f;
     for (int q = 0; q < QUALITY_COUNT; q++) {
-        double se = 0.0;
-        g_fetch_all = 1;
+            g_fetch_all = 1;
         render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
         assert_int_equal(g_draws, 1);
         g_fetch_all = 0;
         render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
         assert_true(g_draws > 1);
-        for (int k = 0; k < W * H * 4; k++)
-            if (k % 4 != 3)
-                se += ((double)fx.img[k] - fx.img2[k]) * ((double)fx.img[k] - fx.img2[k]);
-        double rmse = sqrt(se / (W * H * 3.0));
+        double rmse = rmse_rgb(fx.img, fx.img2);
         print_message("%s, 1 km: %d runs vs every pattern everywhere: RMSE %.3f / 255\n",
                       render_quality_name(q), g_draws, rmse);
         assert_true(rmse < 1.0);
