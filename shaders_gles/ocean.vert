@@ -115,7 +115,8 @@ vec4 lookups(vec3 v, vec2 s)
 {
     vec3 n = facing_normal(v, s);
     vec2 fv = v.xy - n.xy;
-    fv *= min(1.0, 0.999 * inversesqrt(max(dot(fv, fv), 1e-6)));
+    float rho = length(fv);
+    fv *= asin(min(rho, 1.0)) / (0.5 * PI * max(rho, 1e-6));
     return vec4(vec2(0.5) + 0.5 * fv, sky_map_uv(reflect(-v, n)));
 }
 

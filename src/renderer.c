@@ -58,6 +58,15 @@ static const char *const sky_uniform_names[SU_COUNT] = {
  * patch by this factor (LOD >= log2 N + 0.3: trilinear reads the 1x1 level alone), a margin for
  * the footprint estimate from the rows' vertices. */
 #define DROP_FOOTPRINT 1.25f
+/* A pattern's whitecaps are dropped earlier, once its patch covers fewer than 1 / this many
+ * pixels along the view: there a pixel averages (N / 8)^2 or more of the table's texels, whose
+ * k moments (Dupuy eq. 7-8) are then close to the patch's, so the coverage of eq. 6 from the
+ * patch's constants differs little, while each whitecap fetch costs as much as a slope fetch. */
+#define WC_DROP_FOOTPRINT 0.125f
+
+/* Ocean program variants: k slots' slopes and the first kw <= k of their whitecaps fetched. */
+#define OCEAN_VARIANTS ((SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1))
+#define VARIANT(k, kw) ((k) * (SWELL_MAX_PATTERNS + 1) + (kw))
 
 enum { A_POS = 0, A_REST, A_GEO_SLOPE, A_GEO_K, A_GRID, A_COUNT };
 static const struct shader_attrib ocean_attribs[A_COUNT] = {
@@ -96,11 +105,11 @@ struct renderer {
     const struct swell_tables *t;
     struct grid *grid;
     struct sky sky;
-    struct shader_program ocean[SWELL_MAX_PATTERNS + 1], skyp;   /* ocean[k]: k slots fetched */
+    struct shader_program ocean[OCEAN_VARIANTS], skyp;   /* ocean[VARIANT(k, kw)] */
     struct shader_program sunp;
-    GLint ou[SWELL_MAX_PATTERNS + 1][OU_COUNT], su[SU_COUNT], sunu[SU_COUNT];
+    GLint ou[OCEAN_VARIANTS][OU_COUNT], su[SU_COUNT], sunu[SU_COUNT];
     GLuint sky_vbo, sky_ibo;
-    GLint vu[SWELL_MAX_PATTERNS + 1][VU_COUNT];
+    GLint vu[OCEAN_VARIANTS][VU_COUNT];
     /* Tiers with vertex texture fetch, projected grid: the grid is built and displaced in
      * ocean.vert from a static VBO of grid parameters and, per pattern, the two loop frames
      * the animation is between (uploaded as they are when the frame changes, blended in
@@ -127,6 +136,7 @@ struct renderer {
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
     int draws;                        /* sea draws in the last frame */
+    int draws_wc_const;               /* ...with whitecaps of a fetched slot as constants */
 };
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
@@ -194,8 +204,8 @@ void renderer_destroy(struct renderer *r)
     free(r->scratch);
     shader_program_destroy(&r->sunp);
     shader_program_destroy(&r->skyp);
-    for (int k = SWELL_MAX_PATTERNS; k >= 0; k--)
-        shader_program_destroy(&r->ocean[k]);
+    for (int v = OCEAN_VARIANTS - 1; v >= 0; v--)
+        shader_program_destroy(&r->ocean[v]);
     free(r->fresnel_own.data);
     free(r->verts);
     sky_destroy(&r->sky);
@@ -421,9 +431,9 @@ static void stream_disp(struct renderer *r, double t_s)
     }
 }
 
-static void set_vtf_uniforms(struct renderer *r, int k, const struct camera *cam)
+static void set_vtf_uniforms(struct renderer *r, int variant, const struct camera *cam)
 {
-    const GLint *u = r->vu[k];
+    const GLint *u = r->vu[variant];
     const struct grid_projection *p = &r->proj;
     float sc[SWELL_MAX_PATTERNS][4] = { { 0 } }, bi[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float pat[SWELL_MAX_PATTERNS][4] = { { 0 } }, v[3][3];
@@ -541,17 +551,22 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     od.attribs = ocean_attribs;
     od.attrib_count = A_COUNT;
     for (int k = 0; k <= r->nfs; k++) {
-        int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s", k,
-                         k < r->nwc ? k : r->nwc,
-                         r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
-        if (r->vtf)
-            snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d", r->t->patterns);
-        od.uniform_locations = r->ou[k];
-        if ((rc = shader_program_build(&od, &r->ocean[k], err)))
-            return rc;
-        for (int v = 0; v < VU_COUNT; v++)
-            r->vu[k][v] = r->vtf ? glGetUniformLocation(r->ocean[k].program, vtf_uniform_names[v])
-                                 : -1;
+        for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s", k, kw,
+                             r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
+            int v = VARIANT(k, kw);
+            if (r->vtf)
+                snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",
+                         r->t->patterns);
+            od.uniform_locations = r->ou[v];
+            if ((rc = shader_program_build(&od, &r->ocean[v], err)))
+                return rc;
+            for (int i = 0; i < VU_COUNT; i++)
+                r->vu[v][i] = r->vtf ? glGetUniformLocation(r->ocean[v].program,
+                                                            vtf_uniform_names[i]) : -1;
+            if (r->d.quality != QUALITY_HIGH)
+                break;   /* low fetches no whitecaps: one variant per k */
+        }
     }
     sd.vs_file = "sky.vert";
     sd.fs_file = "sky.frag";
@@ -816,13 +831,14 @@ static void add_k_constants(const struct fs_slot *sl, float ck[3])
     ck[2] *= sl->top_k[2];
 }
 
-/* Uniforms of the variant fetching the first k slots; slots k.. enter as their constants. */
-static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *cam,
+/* Uniforms of the variant fetching the first k slots' slopes and the first kw's whitecaps;
+ * the rest enter as their patches' constants. */
+static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct camera *cam,
                                mat4 world_to_clip)
 {
-    const GLint *u = r->ou[k];
+    const GLint *u = r->ou[VARIANT(k, kw)];
     if (r->vtf)
-        set_vtf_uniforms(r, k, cam);
+        set_vtf_uniforms(r, VARIANT(k, kw), cam);
     float off[SWELL_MAX_PATTERNS][2] = { { 0 } }, inv[SWELL_MAX_PATTERNS] = { 0 };
     float ss[SWELL_MAX_PATTERNS][4] = { { 0 } }, sb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
@@ -846,7 +862,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
         bind_tex(UNIT_PATTERNS + s, sl->slope_tex, u[OU_SLOPE_TEX0 + s]);
-        if (s < r->nwc)   /* whitecap textures exist exactly for these (create_textures) */
+        if (s < kw)   /* kw <= nwc: whitecap textures exist for these (create_textures) */
             bind_tex(UNIT_PATTERNS + r->nfs + s, sl->wc_tex, u[OU_WC_TEX0 + s]);
         else
             add_k_constants(sl, ck);
@@ -913,16 +929,15 @@ static void set_ocean_uniforms(struct renderer *r, int k, const struct camera *c
 }
 
 /* Slots fetched for a row whose nearest vertex is at squared horizontal distance d2: those whose
- * patch is still larger than the pixel footprint there. On a plane seen from altitude a at
- * distance d the footprint along the view (the larger axis, which sets the LOD) is
+ * patch is still larger than drop x the pixel footprint there. On a plane seen from altitude a
+ * at distance d the footprint along the view (the larger axis, which sets the LOD) is
  * d^2 / a times the pixel's angle. Slots are largest first, so the answer is a count. */
-static int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle)
+static int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle,
+                        float drop)
 {
     float foot = (d2 + alt * alt) / alt * pix_angle;
     int k = 0;
-    if (r->d.fetch_all)
-        return r->nfs;
-    while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * DROP_FOOTPRINT > foot)
+    while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * drop > foot)
         k++;
     return k;
 }
@@ -934,29 +949,40 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
     float alt = fmaxf((float)cam->pos[2], 0.5f);
     float fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * (float)(M_PI / 180.0);
     float pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
-    int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1;
-    r->draws = 0;
+    int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1, run_kw = -1;
+    int high = r->d.quality == QUALITY_HIGH;
+    r->draws = r->draws_wc_const = 0;
     for (int row = 0; row <= rows; row++) {
-        int first = 0, count = 0, k = -2;
+        int first = 0, count = 0, k = -2, kw = -2;
         float d2 = 0.0f;
         if (row < rows) {
             grid_row_span(r->grid, row, &first, &count, &d2);
-            k = slots_needed(r, d2, alt, pix);
+            if (r->d.fetch_all) {
+                k = r->nfs;
+                kw = high ? r->nwc : 0;
+            } else {
+                k = slots_needed(r, d2, alt, pix, DROP_FOOTPRINT);
+                kw = high ? slots_needed(r, d2, alt, pix, WC_DROP_FOOTPRINT) : 0;
+                kw = kw < r->nwc ? kw : r->nwc;
+                kw = kw < k ? kw : k;
+            }
         }
-        if (k == run_k && first == run_first + run_count) {
+        if (k == run_k && kw == run_kw && first == run_first + run_count) {
             run_count += count;
             continue;
         }
         if (run_count > 0) {
-            glUseProgram(r->ocean[run_k].program);
-            set_ocean_uniforms(r, run_k, cam, world_to_clip);
+            glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
+            set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
             glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;
+            r->draws_wc_const += run_kw < (run_k < r->nwc ? run_k : r->nwc);
         }
         run_first = first;
         run_count = count;
         run_k = k;
+        run_kw = kw;
     }
 }
 
@@ -1030,6 +1056,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     out->vertices = grid_vertex_count(r->grid);
     out->triangles = grid_index_count(r->grid) / 3;
     out->sea_draws = r->draws;
+    out->sea_draws_wc_const = r->draws_wc_const;
     out->vtf = r->vtf;
 }
 

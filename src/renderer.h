@@ -37,6 +37,8 @@ struct renderer_stats {
     uint64_t cpu_bytes_per_frame;       /* bytes streamed to the GPU each frame */
     int vertices, triangles;
     int sea_draws;                      /* runs of rows drawn in the last frame (renderer.c) */
+    int sea_draws_wc_const;             /* ...of them, runs where a fetched slot's whitecaps
+                                         * entered as its patch's constants */
     int vtf;                            /* grid built and displaced in the vertex shader */
 };
 

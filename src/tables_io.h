@@ -1,5 +1,5 @@
 /* tables_io.h - a table set on disk: one KTX 1.1 file per table (src/ktx.h) plus
- * "manifest.swell" (src/kv.h format, first line "swell-manifest 1") holding the resolved sea
+ * "manifest.swell" (src/kv.h format, first line "swell-manifest 2") holding the resolved sea
  * state, every swell_tables field (floats %.9g, exact round trip) and, per table, its file,
  * kind, pattern, geometry, file size and crc32 of the whole file.
  *
@@ -18,7 +18,7 @@
 
 #define TABLES_MANIFEST_NAME    "manifest.swell"
 #define TABLES_MANIFEST_MAGIC   "swell-manifest"
-#define TABLES_MANIFEST_VERSION 1
+#define TABLES_MANIFEST_VERSION 2   /* 2: Hu's Fresnel texture indexed equidistantly (fresnel.h) */
 #define TABLES_MANIFEST_MAX_BYTES (1u << 20)
 
 struct tables_manifest_entry {

@@ -125,6 +125,7 @@ static float g_move_sun[2];  /* when [0] > 0: renderer_set_sun(elev, azim) after
 static int g_cpu_geometry;   /* renderer_desc.cpu_geometry */
 static int g_fetch_all;      /* renderer_desc.fetch_all */
 static int g_draws;          /* renderer_stats.sea_draws of the last render */
+static int g_draws_wc_const; /* renderer_stats.sea_draws_wc_const of the last render */
 static int g_vtf_used;       /* renderer_stats.vtf of the last render */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
@@ -164,6 +165,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     clock_gettime(CLOCK_MONOTONIC, &b);
     renderer_get_stats(r, &st);
     g_draws = st.sea_draws;
+    g_draws_wc_const = st.sea_draws_wc_const;
     if (ms)
         *ms = (b.tv_sec - a.tv_sec) * 1e3 + (b.tv_nsec - a.tv_nsec) * 1e-6;
     assert_int_equal(fx.ph.be->read_rgba(fx.ph.p, rgba, &err), 0);
@@ -452,8 +454,9 @@ static void test_vtf_geometry(void **state)
 }
 
 /* Rows where a pattern's patch is smaller than a pixel take its top mip level as a constant
- * instead of fetching it: from 1 km up the picture must be the one that fetches every pattern
- * everywhere (RMSE < 1 / 255), drawn in more than one run, at both qualities. */
+ * instead of fetching it (its whitecaps already below 8 pixels): from 1 km up the picture must
+ * be the one that fetches every pattern everywhere (RMSE < 1 / 255), drawn in more than one
+ * run, at both qualities. */
 static void test_fetch_runs(void **state)
 {
     struct camera c;
@@ -465,12 +468,16 @@ static void test_fetch_runs(void **state)
             g_fetch_all = 1;
         render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
         assert_int_equal(g_draws, 1);
+        assert_int_equal(g_draws_wc_const, 0);
         g_fetch_all = 0;
         render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
         assert_true(g_draws > 1);
+        /* high: whitecaps are dropped before slopes (WC_DROP_FOOTPRINT) in some run */
+        assert_true(q == QUALITY_HIGH ? g_draws_wc_const > 0 : g_draws_wc_const == 0);
         double rmse = rmse_rgb(fx.img, fx.img2);
-        print_message("%s, 1 km: %d runs vs every pattern everywhere: RMSE %.3f / 255\n",
-                      render_quality_name(q), g_draws, rmse);
+        print_message("%s, 1 km: %d runs (%d with whitecaps as constants) vs every pattern "
+                      "everywhere: RMSE %.3f / 255\n", render_quality_name(q), g_draws,
+                      g_draws_wc_const, rmse);
         assert_true(rmse < 1.0);
     }
 }

@@ -229,16 +229,12 @@ static void test_hu_table(void **state)
     assert_int_equal(t.levels, 1);
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++) {
-            /* the header's look-up (s, t) = 0.5 + 0.5 (vx, vy) at this texel's centre */
+            /* the header's look-up (s, t) = 0.5 + 0.5 p, |p| = theta / (pi / 2), at this
+             * texel's centre */
             double s = (i + 0.5) / n, tt = (j + 0.5) / n;
-            double v[3] = { 2.0 * s - 1.0, 2.0 * tt - 1.0, 0.0 };
-            double r = hypot(v[0], v[1]);
-            if (r > 1.0) {
-                v[0] /= r;
-                v[1] /= r;
-            } else {
-                v[2] = sqrt(1.0 - r * r);
-            }
+            double px = 2.0 * s - 1.0, py = 2.0 * tt - 1.0, r = hypot(px, py);
+            double th = 0.5 * M_PI * fmin(r, 1.0);
+            double v[3] = { sin(th) * px / r, sin(th) * py / r, r < 1.0 ? cos(th) : 0.0 };
             const uint8_t *p = t.data + ((size_t)j * n + i) * 4;
             for (int c = 0; c < 3; c++)
                 assert_true(fabs(dq(&t, c, p[c]) - v[c]) <= t.scale[c] / 510.0 + 1e-6);
@@ -253,6 +249,48 @@ static void test_hu_table(void **state)
         assert_true(t.bias[c] == -1.0f);
     }
     assert_true(t.scale[3] == 1.0f && t.bias[3] == 0.0f);
+    free(t.data);
+}
+
+/* Bilinear look-up of channel c at (s, t), CLAMP_TO_EDGE, as GL samples the table. */
+static double bilinear(const struct swell_table *t, int c, double s, double tt)
+{
+    double x = s * t->width - 0.5, y = tt * t->height - 0.5;
+    int x0 = (int)floor(x), y0 = (int)floor(y);
+    double fx = x - x0, fy = y - y0, v = 0.0;
+    for (int dy = 0; dy < 2; dy++)
+        for (int dx = 0; dx < 2; dx++) {
+            int xi = x0 + dx < 0 ? 0 : x0 + dx >= t->width ? t->width - 1 : x0 + dx;
+            int yi = y0 + dy < 0 ? 0 : y0 + dy >= t->height ? t->height - 1 : y0 + dy;
+            double w = (dx ? fx : 1.0 - fx) * (dy ? fy : 1.0 - fy);
+            v += w * dq(t, c, t->data[((size_t)yi * t->width + xi) * 4 + c]);
+        }
+    return v;
+}
+
+/* Grazing views, where F climbs fastest: looked up as ocean.vert does, F at one view angle
+ * must not depend on the azimuth (it did by up to 0.2 with Hu's (vx, vy) index, whose
+ * outermost texel ring held every angle past 83 degrees: vertical streaks at the horizon),
+ * and must stay within the texture's resolution of the exact value. */
+static void test_hu_table_grazing(void **state)
+{
+    (void)state;
+    struct swell_table t;
+    struct swell_err err = { 0 };
+    assert_int_equal(fresnel_hu_table(64, &t, &err), 0);
+    for (double deg = 80.0; deg <= 88.0; deg += 1.0) {
+        double th = deg * M_PI / 180.0, lo = 2.0, hi = -1.0, rs, rp;
+        ref_fresnel_sp(th, SWELL_WATER_IOR, &rs, &rp);
+        for (int a = 0; a < 360; a++) {
+            double az = a * M_PI / 180.0, r = th / (0.5 * M_PI);
+            double f = bilinear(&t, 3, 0.5 + 0.5 * r * cos(az), 0.5 + 0.5 * r * sin(az));
+            lo = fmin(lo, f);
+            hi = fmax(hi, f);
+        }
+        print_message("%.0f deg: F %.4f..%.4f, exact %.4f\n", deg, lo, hi, 0.5 * (rs + rp));
+        assert_true(hi - lo < 0.03);
+        assert_true(fabs(0.5 * (lo + hi) - 0.5 * (rs + rp)) < 0.03);
+    }
     free(t.data);
 }
 
@@ -311,6 +349,7 @@ int main(void)
         cmocka_unit_test(test_effective_smooth_limit),
         cmocka_unit_test(test_fit_vs_eq24),
         cmocka_unit_test(test_hu_table),
+        cmocka_unit_test(test_hu_table_grazing),
         cmocka_unit_test(test_eff_table),
         cmocka_unit_test(test_table_bad_size),
     };
