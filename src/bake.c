@@ -14,6 +14,11 @@
  * pattern of a few metres repeats every few metres, and foam (and Dupuy's k_i) drawn from it
  * showed as a visible lattice in storm scenes. Whitecaps are features of the dominant waves;
  * the small patterns keep their slopes and contribute the constant 1/n to Dupuy's j (eq. 7).
+ *
+ * Foam input is sub-texel: eq. 8's Theta per texel becomes the share B of the texel's area
+ * (4 x 4 sub-samples of the bilinear lambda_min) below lambda_T (whitecap.h), so the foam's edge
+ * follows the breaking contour instead of the texel grid. Algorithm 1's <Theta> is the mean of
+ * that same B, and the final lambda_T is bisected on the loop's measured eq. 9 fraction.
  */
 #include "bake.h"
 
@@ -117,34 +122,11 @@ static void progress(const struct bake_opts *o, double done, const char *stage)
         o->progress(o->user, done, stage);
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
-/* Fraction of sorted samples below v: the empirical CDF of Tessendorf eq. 12, but over all
- * samples. whitecap_cdf() follows eq. 12 literally (lambda_min >= 0 only); the foam update of
- * eq. 7 fires on negative lambda_min too (folded crests), so the fraction the threshold targets
- * must count them or the measured fraction (eq. 9) overshoots the model. */
-static double cdf_sorted(const float *sorted, size_t n, float v)
-{
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (sorted[mid] < v)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return (double)lo / (double)n;
-}
-
 struct pattern_work {
     struct ocean *ocean;
     float *slope, *white, *disp;  /* float chains, level 0 filled per frame */
     float *lmin;                  /* F * N * N */
-    float *lmin_sorted;
+    struct whitecap_cover cover;  /* sub-texel breaking coverage of lmin (breaking patterns) */
     double k_mean, k_var;
     int breaks;                   /* carries whitecaps (see top) */
     double alpha;                 /* eq. 11's per-frame foam decay for this pattern's dt */
@@ -156,8 +138,8 @@ static void pattern_work_free(struct pattern_work *w)
     free(w->slope);
     free(w->white);
     free(w->disp);
+    whitecap_cover_destroy(&w->cover);
     free(w->lmin);
-    free(w->lmin_sorted);
     memset(w, 0, sizeof *w);
 }
 
@@ -223,10 +205,9 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     /* displacement: level 0 per frame now, box-filtered down to the geometry size later */
     w->disp = calloc(quantize_chain_floats(n, n, F, ilog2(n / s->size_geo) + 1), sizeof(float));
     w->lmin = calloc(texels * (size_t)F, sizeof(float));
-    w->lmin_sorted = calloc(texels * (size_t)F, sizeof(float));
-    if (!w->slope || !w->white || !w->disp || !w->lmin || !w->lmin_sorted)
+    if (!w->slope || !w->white || !w->disp || !w->lmin)
         return swell_fail(err, SWELL_E_NOMEM, "pattern %d: cannot allocate %zu floats of fields",
-                          index, chain * 2 + texels * 6 * (size_t)F);
+                          index, chain * 2 + texels * 5 * (size_t)F);
     double ksum = 0.0, ksum2 = 0.0;
     for (int f = 0; f < F; f++) {
         struct ocean_fields fl;
@@ -262,8 +243,13 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     double cnt = (double)texels * F;
     w->k_mean = ksum / cnt;
     w->k_var = ksum2 / cnt - w->k_mean * w->k_mean;
-    memcpy(w->lmin_sorted, w->lmin, texels * (size_t)F * sizeof(float));
-    qsort(w->lmin_sorted, texels * (size_t)F, sizeof(float), cmp_float);
+    if (w->breaks) {
+        /* foam from the share of each texel's area that breaks, not a yes/no at its centre */
+        struct whitecap_cover_desc cd = { .lambda_min = w->lmin, .width = n, .height = n,
+                                          .frames = F };
+        if ((r = whitecap_cover_create(&cd, &w->cover, err)))
+            return swell_err_context(err, "pattern %d", index);
+    }
 
     struct ocean_stats st;
     ocean_get_stats(w->ocean, &st);
@@ -276,29 +262,37 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     return 0;
 }
 
-/* Smallest and largest lambda_min over the first np patterns (their samples are sorted). */
-static void lmin_range(const struct pattern_work *w, int np, size_t count, float *lo, float *hi)
+/* Smallest and largest lambda_min sub-sample over the first np patterns. */
+static void lmin_range(const struct pattern_work *w, int np, float *lo, float *hi)
 {
-    *lo = w[0].lmin_sorted[0];
-    *hi = w[0].lmin_sorted[count - 1];
+    whitecap_cover_extent(&w[0].cover, lo, hi);
     for (int i = 1; i < np; i++) {
-        *lo = fminf(*lo, w[i].lmin_sorted[0]);
-        *hi = fmaxf(*hi, w[i].lmin_sorted[count - 1]);
+        float l, h;
+        whitecap_cover_extent(&w[i].cover, &l, &h);
+        *lo = fminf(*lo, l);
+        *hi = fmaxf(*hi, h);
     }
 }
 
-/* Shared lambda_T so that the union of the patterns' whitecaps equals the model (see top). */
-static float solve_threshold(struct pattern_work *w, int np, size_t count, double target,
-                             double *theta_union)
+/* Shared lambda_T so that the union of the patterns' whitecaps equals the model (see top).
+ * <Theta> of eq. 11-12 is the mean sub-texel coverage B over the same sub-samples the foam
+ * loop uses (eq. 8 with B: <W> = <B> + a <W> - a <B W>, so eq. 11 holds with <Theta> = <B>).
+ * Over all samples: whitecap_cdf() follows eq. 12 literally (lambda_min >= 0 only), but the
+ * foam update fires on negative lambda_min too (folded crests), so the fraction the threshold
+ * targets must count them or the measured fraction (eq. 9) overshoots the model. */
+static float solve_threshold(struct pattern_work *w, int np, double target, double *theta_union)
 {
     float lo, hi;
-    lmin_range(w, np, count, &lo, &hi);
+    lmin_range(w, np, &lo, &hi);
     hi = nextafterf(hi, INFINITY);
     for (int it = 0; it < 64; it++) {
         float mid = 0.5f * (lo + hi);
+        if (mid <= lo || mid >= hi)
+            break;   /* adjacent floats */
         double keep = 1.0;
         for (int i = 0; i < np; i++)
-            keep *= 1.0 - whitecap_ensemble_fraction(cdf_sorted(w[i].lmin_sorted, count, mid), w[i].alpha);
+            keep *= 1.0 - whitecap_ensemble_fraction(whitecap_cover_mean(&w[i].cover, mid),
+                                                     w[i].alpha);
         if (1.0 - keep < target)
             lo = mid;
         else
@@ -306,14 +300,15 @@ static float solve_threshold(struct pattern_work *w, int np, size_t count, doubl
     }
     double keep = 1.0;
     for (int i = 0; i < np; i++)
-        keep *= 1.0 - cdf_sorted(w[i].lmin_sorted, count, hi);
+        keep *= 1.0 - whitecap_cover_mean(&w[i].cover, hi);
     *theta_union = 1.0 - keep;
     return hi;
 }
 
 #define THRESHOLD_ITERATIONS 16
 
-/* Foam loops (eq. 7-8) of every pattern at threshold lt; *keep = prod (1 - W_i), W_i by eq. 9.
+/* Foam loops (eq. 8 with the sub-texel coverage B) of every pattern at threshold lt;
+ * *keep = prod (1 - W_i), W_i by eq. 9.
  * With store set, the opacities go into the whitecap chains. */
 static int foam_union(const struct seastate *s, const struct swell_tables *out,
                       struct pattern_work *w, int np, float lt, float *tmp, int store,
@@ -323,8 +318,7 @@ static int foam_union(const struct seastate *s, const struct swell_tables *out,
     *keep = 1.0;
     for (int i = 0; i < np; i++) {
         float dt = out->pattern[i].period_s / s->frames;
-        int r = whitecap_foam_loop(w[i].lmin, s->frames, texels, lt, dt, s->foam_half_life_s,
-                                   tmp, err);
+        int r = whitecap_foam_loop(&w[i].cover, lt, dt, s->foam_half_life_s, tmp, err);
         if (r)
             return r;
         if (store)
@@ -384,7 +378,7 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
     double w_model = whitecap_model_fraction(s.whitecap_model, s.wind_speed_mps);
     double theta_union = 0.0;
     out->whitecap_fraction_model = (float)w_model;
-    float lt = solve_threshold(work, foam_patterns, count, w_model, &theta_union);
+    float lt = solve_threshold(work, foam_patterns, w_model, &theta_union);
     out->lambda_t_algorithm1 = lt;
     tmp = malloc(count * sizeof(float));
     if (!tmp) {
@@ -396,7 +390,7 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
      * the model. Refine lambda_T by bisection on the measured union fraction of the loop,
      * starting from algorithm 1's value (monotone: a higher threshold only adds foam). */
     float lo, hi;
-    lmin_range(work, foam_patterns, count, &lo, &hi);
+    lmin_range(work, foam_patterns, &lo, &hi);
     double keep = 1.0;
     for (int it = 0; it < THRESHOLD_ITERATIONS + 1; it++) {
         if ((r = foam_union(&s, out, work, foam_patterns, lt, tmp, it == THRESHOLD_ITERATIONS,

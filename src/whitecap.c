@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "seastate.h"
 
@@ -117,41 +118,193 @@ int whitecap_threshold(const float *lambda_min, size_t count, double fraction, f
     return 0;
 }
 
-/* One step of eq. 7 (equivalently eq. 8) for every texel; the case form avoids eq. 8's
- * O a + (1 - O a), which is not always exactly 1 in floating point. */
-static void foam_step(const float *lambda_min, const float *prev, float *next, size_t texels,
-                      float lambda_t, float decay)
+/* ---- sub-texel breaking coverage ------------------------------------------------------- */
+
+/* The sub x sub points of texel (x, y): offsets (2s + 1 - sub) / (2 sub) from its centre, each
+ * a bilinear blend of the centre and the neighbour on that side (weight |offset|), separable:
+ * along x on the three rows, then along y. Offset 0 (sub = 1, odd sub's middle) gives the
+ * centre's own value exactly. */
+static void sub_samples(const float *lm, int w, int h, int x, int y, int sub, float *out)
 {
-    for (size_t i = 0; i < texels; i++)
-        next[i] = lambda_min[i] < lambda_t ? 1.0f : prev[i] * decay;
+    int xm = x > 0 ? x - 1 : w - 1, xp = x + 1 < w ? x + 1 : 0;
+    int ym = y > 0 ? y - 1 : h - 1, yp = y + 1 < h ? y + 1 : 0;
+    const float *row[3] = { lm + (size_t)ym * (size_t)w, lm + (size_t)y * (size_t)w,
+                            lm + (size_t)yp * (size_t)w };
+    float hz[3][WHITECAP_SUB_MAX];
+    for (int s = 0; s < sub; s++) {
+        float o = (float)(2 * s + 1 - sub) / (float)(2 * sub);
+        float wt = fabsf(o);
+        int xn = o < 0.0f ? xm : xp;
+        for (int r = 0; r < 3; r++)
+            hz[r][s] = row[r][x] + wt * (row[r][xn] - row[r][x]);
+    }
+    for (int t = 0; t < sub; t++) {
+        float o = (float)(2 * t + 1 - sub) / (float)(2 * sub);
+        float wt = fabsf(o);
+        int rn = o < 0.0f ? 0 : 2;
+        for (int s = 0; s < sub; s++)
+            out[t * sub + s] = hz[1][s] + wt * (hz[rn][s] - hz[1][s]);
+    }
 }
 
-int whitecap_foam_loop(const float *lambda_min, int frames, size_t texels, float lambda_t,
-                       float dt_s, float half_life_s, float *opacity, struct swell_err *err)
+int whitecap_cover_create(const struct whitecap_cover_desc *desc, struct whitecap_cover *out,
+                          struct swell_err *err)
 {
-    if (frames < 1)
-        return swell_fail(err, SWELL_E_ARG, "foam loop: %d frames, need at least 1", frames);
+    memset(out, 0, sizeof *out);
+    struct whitecap_cover_desc d = *desc;
+    if (d.sub == 0)
+        d.sub = WHITECAP_SUB_DEFAULT;
+    if (!d.lambda_min || d.width < 1 || d.height < 1 || d.frames < 1)
+        return swell_fail(err, SWELL_E_ARG,
+                          "whitecap cover: %d x %d texels x %d frames%s; need a lambda_min "
+                          "table of at least 1 x 1 x 1", d.width, d.height, d.frames,
+                          d.lambda_min ? "" : " and no samples");
+    if (d.sub < 1 || d.sub > WHITECAP_SUB_MAX)
+        return swell_fail(err, SWELL_E_ARG,
+                          "whitecap cover: %d sub-samples per texel side, need 1..%d (0 = %d)",
+                          d.sub, WHITECAP_SUB_MAX, WHITECAP_SUB_DEFAULT);
+    size_t texels = (size_t)d.width * (size_t)d.height, count = texels * (size_t)d.frames;
+    for (size_t i = 0; i < count; i++)
+        if (isnan(d.lambda_min[i]))
+            return swell_fail(err, SWELL_E_ARG,
+                              "whitecap cover: lambda_min of texel %zu, frame %zu is NaN; the "
+                              "Jacobian fields hold NaN (check the spectrum and choppiness)",
+                              i % texels, i / texels);
+    out->range = malloc(2 * count * sizeof *out->range);
+    if (!out->range)
+        return swell_fail(err, SWELL_E_NOMEM,
+                          "whitecap cover: cannot allocate %zu floats of sub-sample ranges",
+                          2 * count);
+    out->desc = d;
+    float smp[WHITECAP_SUB_MAX * WHITECAP_SUB_MAX];
+    int n = d.sub * d.sub;
+    for (int f = 0; f < d.frames; f++) {
+        const float *lm = d.lambda_min + (size_t)f * texels;
+        float *rg = out->range + 2 * (size_t)f * texels;
+        for (int y = 0; y < d.height; y++)
+            for (int x = 0; x < d.width; x++) {
+                sub_samples(lm, d.width, d.height, x, y, d.sub, smp);
+                float lo = smp[0], hi = smp[0];
+                for (int k = 1; k < n; k++) {
+                    lo = fminf(lo, smp[k]);
+                    hi = fmaxf(hi, smp[k]);
+                }
+                size_t i = (size_t)y * (size_t)d.width + (size_t)x;
+                rg[2 * i] = lo;
+                rg[2 * i + 1] = hi;
+            }
+    }
+    return 0;
+}
+
+void whitecap_cover_destroy(struct whitecap_cover *c)
+{
+    if (!c)
+        return;
+    free(c->range);
+    memset(c, 0, sizeof *c);
+}
+
+/* B of texel i of frame f: 0 or 1 from its sub-sample range unless lambda_t falls inside it. */
+static float cover_texel(const struct whitecap_cover *c, int f, size_t i, float lambda_t)
+{
+    const struct whitecap_cover_desc *d = &c->desc;
+    size_t texels = (size_t)d->width * (size_t)d->height;
+    const float *rg = c->range + 2 * ((size_t)f * texels + i);
+    if (!(lambda_t > rg[0]))
+        return 0.0f;
+    if (lambda_t > rg[1])
+        return 1.0f;
+    float smp[WHITECAP_SUB_MAX * WHITECAP_SUB_MAX];
+    int n = d->sub * d->sub, below = 0;
+    sub_samples(d->lambda_min + (size_t)f * texels, d->width, d->height,
+                (int)(i % (size_t)d->width), (int)(i / (size_t)d->width), d->sub, smp);
+    for (int k = 0; k < n; k++)
+        below += smp[k] < lambda_t;
+    return (float)below / (float)n;
+}
+
+void whitecap_cover_frame(const struct whitecap_cover *c, int frame, float lambda_t, float *b)
+{
+    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
+    for (size_t i = 0; i < texels; i++)
+        b[i] = cover_texel(c, frame, i, lambda_t);
+}
+
+double whitecap_cover_mean(const struct whitecap_cover *c, float lambda_t)
+{
+    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
+    double sum = 0.0;
+    for (int f = 0; f < c->desc.frames; f++)
+        for (size_t i = 0; i < texels; i++)
+            sum += cover_texel(c, f, i, lambda_t);
+    return sum / ((double)texels * (double)c->desc.frames);
+}
+
+void whitecap_cover_extent(const struct whitecap_cover *c, float *lo, float *hi)
+{
+    size_t count = (size_t)c->desc.width * (size_t)c->desc.height * (size_t)c->desc.frames;
+    *lo = c->range[0];
+    *hi = c->range[1];
+    for (size_t i = 1; i < count; i++) {
+        *lo = fminf(*lo, c->range[2 * i]);
+        *hi = fmaxf(*hi, c->range[2 * i + 1]);
+    }
+}
+
+/* One update of eq. 8 with Theta -> B for every texel of frame f: O' = B + (1 - B) a O. B = 1
+ * gives 1 + 0 = 1 and B = 0 gives a O, both exactly (eq. 7's cases), so a binary cover
+ * reproduces eq. 7 bit for bit. q, unless NULL, accumulates the product of the (1 - B) a
+ * factors. */
+static void foam_step(const struct whitecap_cover *c, int f, const float *prev, float *next,
+                      float *q, float lambda_t, float decay)
+{
+    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
+    for (size_t i = 0; i < texels; i++) {
+        float b = cover_texel(c, f, i, lambda_t);
+        float keep = (1.0f - b) * decay;
+        next[i] = b + keep * prev[i];
+        if (q)
+            q[i] *= keep;
+    }
+}
+
+int whitecap_foam_loop(const struct whitecap_cover *c, float lambda_t, float dt_s,
+                       float half_life_s, float *opacity, struct swell_err *err)
+{
     if (!(dt_s > 0.0f) || !(half_life_s > 0.0f) || !isfinite(dt_s) || !isfinite(half_life_s))
         return swell_fail(err, SWELL_E_ARG,
                           "foam loop: frame step %g s and half-life %g s must be finite and > 0",
                           (double)dt_s, (double)half_life_s);
     float decay = (float)exp2(-(double)dt_s / (double)half_life_s);
-    size_t F = (size_t)frames;
-    float *last = opacity + (F - 1) * texels;
+    int F = c->desc.frames;
+    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
+    float *last = opacity + (size_t)(F - 1) * texels;
+    float *q = malloc(texels * sizeof *q);
+    if (!q)
+        return swell_fail(err, SWELL_E_NOMEM, "foam loop: cannot allocate %zu floats", texels);
 
-    /* Periodic steady state in two passes. Pass 1 starts from O = 0 (the paper's initial
-     * state). A texel that breaks in some frame forgets its start there, so after pass 1 its
-     * frame F-1 value is already periodic; a texel that never breaks decays to the periodic
-     * value 0 and stays 0. Pass 2 restarts from that frame F-1 value, so frame 0 follows from
-     * frame F-1 by eq. 7 and the loop closes exactly (same products, same rounding). */
-    for (size_t i = 0; i < texels; i++)
+    /* Periodic steady state. Round the loop eq. 8 is affine per texel: from O = x before frame
+     * 0, frame F-1 is P + Q x with Q = prod_f (1 - B_f) a <= a^F < 1. Pass 1 runs from x = 0
+     * (the paper's initial state), giving P and Q; the fixed point x* = P / (1 - Q) is the
+     * frame F-1 value of the periodic state, and pass 2 restarts from it. Where some frame has
+     * B = 1, Q = 0 and x* = P exactly; where B = 0 throughout, P = 0 = x*: those texels close
+     * the loop bit for bit, as eq. 7's two-pass loop did. */
+    for (size_t i = 0; i < texels; i++) {
         last[i] = 0.0f;
-    for (int pass = 0; pass < 2; pass++) {
-        foam_step(lambda_min, last, opacity, texels, lambda_t, decay);
-        for (size_t f = 1; f < F; f++)
-            foam_step(lambda_min + f * texels, opacity + (f - 1) * texels, opacity + f * texels,
-                      texels, lambda_t, decay);
+        q[i] = 1.0f;
     }
+    for (int pass = 0; pass < 2; pass++) {
+        for (int f = 0; f < F; f++)
+            foam_step(c, f, f ? opacity + (size_t)(f - 1) * texels : last,
+                      opacity + (size_t)f * texels, pass ? NULL : q, lambda_t, decay);
+        if (pass == 0)
+            for (size_t i = 0; i < texels; i++) {
+                double x = q[i] > 0.0f ? (double)last[i] / (1.0 - (double)q[i]) : last[i];
+                last[i] = x < 1.0 ? (float)x : 1.0f;
+            }
+    }
+    free(q);
     return 0;
 }
 

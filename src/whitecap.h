@@ -4,7 +4,8 @@
  * (Tessendorf 2023 §2). Breaking where lambda_min < lambda_T; lambda_T is chosen from the CDF of
  * lambda_min so that the whitecap fraction equals a wind-speed model (algorithm 1, eq. 11-13).
  * Foam opacity O decays with a half-life (eq. 7-8); over a loop it is brought to its periodic
- * steady state so frame F equals frame 0.
+ * steady state so frame F equals frame 0. The breaking input per texel is the share of its area
+ * that breaks (sub-sampled), not a yes/no at its centre, so foam edges are not the texel grid.
  */
 #ifndef SWELL_WHITECAP_H
 #define SWELL_WHITECAP_H
@@ -45,14 +46,56 @@ double whitecap_cdf(const float *lambda_min, size_t count, float lambda_t);
 int whitecap_threshold(const float *lambda_min, size_t count, double fraction, float *lambda_t,
                        struct swell_err *err);
 
-/* Foam opacity for a looping sequence: lambda_min[frame * texels + i] for F frames spaced dt_s;
- * writes opacity[frame * texels + i] in [0, 1], the periodic steady state of eq. 7-8: the
- * update run once round the loop from frame F-1 gives back frame 0 exactly. half_life_s is a
- * true half-life (opacity halves in half_life_s without breaking): eq. 7's decay time is
- * T = half_life_s / ln 2, so the per-frame factor is exp(-dt/T) = 2^(-dt_s / half_life_s).
- * (The paper calls T a "half life" but writes exp(-dt/T).) */
-int whitecap_foam_loop(const float *lambda_min, int frames, size_t texels, float lambda_t,
-                       float dt_s, float half_life_s, float *opacity, struct swell_err *err);
+/* Sub-texel breaking coverage: the B in [0, 1] that replaces eq. 8's binary
+ * Theta(lambda_T - lambda_min) per texel. A texel of a periodic width x height lambda_min table
+ * covers the unit square around its centre; between centres lambda_min is bilinear (wrapping at
+ * the edges, as the GPU samples the looping table). B(lambda_T) is the share of the texel's
+ * sub x sub sub-sample points (the centres of a sub x sub split of the square) where that
+ * reconstruction is < lambda_T: a midpoint-rule estimate of the breaking area. sub = 1 is the
+ * texel centre alone, i.e. eq. 7's binary test. Each texel keeps its smallest and largest
+ * sub-sample, so only texels on a breaking edge recount at a new threshold. */
+#define WHITECAP_SUB_DEFAULT 4
+#define WHITECAP_SUB_MAX 16
+
+struct whitecap_cover_desc {
+    const float *lambda_min;  /* frames x height x width, row-major per frame; borrowed, must
+                               * outlive the cover and hold no NaN */
+    int width, height;        /* texels, >= 1 */
+    int frames;               /* >= 1 */
+    int sub;                  /* sub-samples per texel side, 1..WHITECAP_SUB_MAX;
+                               * 0 = WHITECAP_SUB_DEFAULT */
+};
+
+struct whitecap_cover {
+    struct whitecap_cover_desc desc;   /* defaults resolved */
+    float *range;                      /* per texel of every frame: smallest, largest sub-sample */
+};
+
+/* SWELL_E_ARG for a bad size, sub or a NaN sample (says which), SWELL_E_NOMEM. On failure
+ * *out is zeroed. */
+int whitecap_cover_create(const struct whitecap_cover_desc *desc, struct whitecap_cover *out,
+                          struct swell_err *err);
+/* Accepts a zeroed or failed cover. */
+void whitecap_cover_destroy(struct whitecap_cover *c);
+/* B of every texel of one frame at lambda_t into b[height * width]. */
+void whitecap_cover_frame(const struct whitecap_cover *c, int frame, float lambda_t, float *b);
+/* Mean B over every texel of every frame: the sub-sample CDF at lambda_t, i.e. eq. 12's
+ * <Theta> for the B the foam loop applies (over all samples: negative lambda_min breaks too). */
+double whitecap_cover_mean(const struct whitecap_cover *c, float lambda_t);
+/* Smallest and largest sub-sample over every texel of every frame. */
+void whitecap_cover_extent(const struct whitecap_cover *c, float *lo, float *hi);
+
+/* Foam opacity for a looping sequence: the cover's F frames spaced dt_s; writes
+ * opacity[frame * texels + i] in [0, 1], the periodic steady state of eq. 8 with Theta replaced
+ * by the coverage B: O' = B + (1 - B) O exp(-dt/T). Its fixed point over the loop is solved per
+ * texel, so one update from frame F-1 gives back frame 0 (exactly where some frame has B = 1 or
+ * B = 0 throughout, to float rounding elsewhere). For B in {0, 1} (sub = 1) this is eq. 7.
+ * half_life_s is a true half-life (opacity halves in half_life_s without breaking): eq. 7's
+ * decay time is T = half_life_s / ln 2, so the per-frame factor is
+ * exp(-dt/T) = 2^(-dt_s / half_life_s). (The paper calls T a "half life" but writes exp(-dt/T).)
+ * SWELL_E_ARG for a bad dt_s or half-life, SWELL_E_NOMEM. */
+int whitecap_foam_loop(const struct whitecap_cover *c, float lambda_t, float dt_s,
+                       float half_life_s, float *opacity, struct swell_err *err);
 
 /* Measured whitecap fraction (eq. 9): mean opacity over all samples; 0 for count 0. */
 double whitecap_measured_fraction(const float *opacity, size_t count);
