@@ -15,6 +15,7 @@
 #define BLEND_BLOCK 16        /* RGBA8 bytes (4 texels) blended to floats per vectorised block */
 #define TILE_LOG2 4           /* lazily blended tiles of 16 x 16 texels */
 #define COORD_BIAS 1073741824.0  /* 2^30: a multiple of every table size; makes texel coords > 0 */
+#define VBLK 8                /* vertices per fixed-size block of the vectorised per-vertex passes */
 
 /* A blended, dequantised level of a table as float4 texels, with its first column and row
  * repeated after its last so a bilinear footprint never wraps: texel (x, y) is at
@@ -58,14 +59,28 @@ struct pattern_frame {
     int disp_on;              /* some vertex gives this pattern a non-zero eq. 2 weight */
 };
 
+/* Per-vertex arrays are structures of arrays over npad = nverts rounded up to VBLK entries (plus
+ * a row and a block more, which the footprint pass reads past the end): fixed blocks of VBLK
+ * vertices are what -O2's very-cheap vectoriser accepts. Padding vertices have fade 0, so eq. 2
+ * gives them weight 0 and no pass samples for them. */
 struct grid {
     const struct swell_tables *t;
     int kind, w, h;
     int nverts, nidx;
+    int npad;                 /* nverts rounded up to VBLK */
+    int ws;                   /* projected grid row width rounded up to VBLK */
     uint16_t *idx;
+    float *rx, *ry;           /* per-vertex rest position on the sea plane, m */
     float *foot;              /* per-vertex footprint (cell size on the sea plane), m */
     float *acc;               /* per-vertex summed displacement (x, y, z, unused), m */
     float *fade;              /* per-vertex displacement factor (1 on the projected grid) */
+    float *row_d2;            /* per projected grid row: smallest squared distance, m^2 */
+    uint32_t *acc_frame;      /* per block of VBLK vertices: the frame its acc was zeroed for */
+    float *blk_foot;          /* per block of VBLK vertices: its smallest footprint this frame, m */
+    uint32_t frame;           /* grid_update's count, never 0 */
+    float unit[2];            /* 0 and 1, eq. 2's clamp (disp_pass says why a field) */
+    double *col_sx;           /* per projected grid column (ws): NDC x of its rays */
+    float *row_x, *row_y;     /* one projected grid row's rest positions (ws), m */
     float foot_lo, foot_hi;   /* smallest and largest footprint this frame */
     float foot_lo_wet;        /* smallest footprint of the vertices with fade > 0 */
     float *row_foot;          /* per row of triangles: smallest squared distance, m^2 */
@@ -201,7 +216,7 @@ static int pattern_images(struct grid_pattern *p, int i, struct swell_err *err)
             image_layout(&p->wc_f[l], p->wc, l, p->wc_sc, p->wc_bi, data, stamp, &texels, &tiles);
         }
         if (pass == 0) {
-            p->disp_mem = malloc(sizeof(float) * 4 * texels);
+            p->disp_mem = calloc(4 * texels, sizeof(float));   /* finite before blending */
             p->stamp_mem = calloc(tiles, sizeof(uint32_t));
             if (!p->disp_mem || !p->stamp_mem)
                 return swell_fail(err, SWELL_E_NOMEM, "grid: no memory for pattern %d images", i);
@@ -243,6 +258,14 @@ void grid_destroy(struct grid *g)
     free(g->fade);
     free(g->foot);
     free(g->acc);
+    free(g->rx);
+    free(g->ry);
+    free(g->row_d2);
+    free(g->acc_frame);
+    free(g->blk_foot);
+    free(g->col_sx);
+    free(g->row_x);
+    free(g->row_y);
     free(g->idx);
     free(g);
 }
@@ -271,15 +294,31 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     if ((rc = build_topology(g, err)))
         goto fail;
     g->rows = g->kind == 0 ? g->h - 1 : FAR_RINGS + NEAR_N - 1;
-    g->row_foot = calloc((size_t)g->rows, sizeof(float));
-    g->foot = malloc(sizeof(float) * (size_t)g->nverts);
-    g->fade = malloc(sizeof(float) * (size_t)g->nverts);
-    g->acc = malloc(sizeof(float) * 4 * (size_t)g->nverts);
-    if (!g->foot || !g->fade || !g->row_foot || !g->acc) {
+    g->npad = (g->nverts + VBLK - 1) / VBLK * VBLK;
+    g->ws = (g->w + VBLK - 1) / VBLK * VBLK;
+    {
+        size_t n = (size_t)g->npad + (size_t)g->w + VBLK;
+        g->row_foot = calloc((size_t)g->rows, sizeof(float));
+        g->foot = calloc(n, sizeof(float));
+        g->fade = calloc(n, sizeof(float));
+        g->acc = calloc(4 * n, sizeof(float));
+        g->rx = calloc(n, sizeof(float));
+        g->ry = calloc(n, sizeof(float));
+        g->row_d2 = calloc((size_t)g->h, sizeof(float));
+        g->acc_frame = calloc((size_t)g->npad / VBLK, sizeof(uint32_t));
+        g->blk_foot = calloc((size_t)g->npad / VBLK, sizeof(float));
+        g->col_sx = calloc((size_t)g->ws, sizeof(double));
+        g->row_x = calloc((size_t)g->ws, sizeof(float));
+        g->row_y = calloc((size_t)g->ws, sizeof(float));
+    }
+    if (!g->foot || !g->fade || !g->row_foot || !g->acc || !g->rx || !g->ry || !g->row_d2 ||
+        !g->acc_frame || !g->blk_foot || !g->col_sx || !g->row_x || !g->row_y) {
         rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for %d vertices", g->nverts);
         goto fail;
     }
     init_fade(g);
+    g->unit[0] = 0.0f;
+    g->unit[1] = 1.0f;
     for (int i = 0; i < t->patterns; i++) {
         struct grid_pattern *p = &g->p[i];
         const struct swell_pattern_info *pi = &t->pattern[i];
@@ -330,17 +369,32 @@ fail:
 
 /* 4 RGBA8 texels of loop frames f0 (a) and f1 (b) blended in 16 bits (a w0 + b w1 + rnd <=
  * 255 * 256 + 128), shifted and dequantised to floats. Fixed blocks of restrict-qualified data
- * are what -O2's very-cheap vectoriser accepts (SSE2, NEON; no intrinsics). */
+ * are what -O2's very-cheap vectoriser accepts (SSE2, NEON; no intrinsics); rnd and shift are
+ * constants where it is inlined (a variable shift costs twice the instructions). */
 static inline void blend_block(float *restrict out, const uint8_t *restrict a,
                                const uint8_t *restrict b, const float *restrict sc,
-                               const float *restrict bi, uint16_t w0, uint16_t w1, uint16_t rnd,
-                               int shift)
+                               const float *restrict bi, uint16_t w0, uint16_t w1,
+                               const uint16_t rnd, const int shift)
 {
     uint16_t v[BLEND_BLOCK];
     for (int k = 0; k < BLEND_BLOCK; k++)
         v[k] = (uint16_t)((uint16_t)(a[k] * w0 + b[k] * w1 + rnd) >> shift);
     for (int k = 0; k < BLEND_BLOCK; k++)
         out[k] = bi[k] + sc[k] * v[k];
+}
+
+/* One row of a tile: n bytes (a multiple of BLEND_BLOCK) from ra / rb, then the texel after
+ * them from ea / eb (the next column, or column 0 where the row wraps). */
+static inline void blend_row(float *restrict o, const uint8_t *restrict ra,
+                             const uint8_t *restrict rb, const uint8_t *restrict ea,
+                             const uint8_t *restrict eb, size_t n, const float *restrict sc,
+                             const float *restrict bi, uint16_t w0, uint16_t w1,
+                             const uint16_t rnd, const int shift)
+{
+    for (size_t k = 0; k < n; k += BLEND_BLOCK)
+        blend_block(o + k, ra + k, rb + k, sc, bi, w0, w1, rnd, shift);
+    for (int c = 0; c < 4; c++)
+        o[n + c] = bi[c] + sc[c] * (uint16_t)((uint16_t)(ea[c] * w0 + eb[c] * w1 + rnd) >> shift);
 }
 
 /* Blend tile (tx, ty) of im for its phase: texels [x0, x0 + TILE] x [y0, y0 + TILE] clipped to
@@ -350,13 +404,13 @@ static void blend_tile(struct f4_image *im, int tx, int ty)
     const struct swell_table *t = im->t;
     const struct stream_phase *ph = &im->ph;
     int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0;
-    uint16_t w1 = (uint16_t)ph->w, w0 = (uint16_t)(STREAM_W_ONE - w1), rnd = im->rnd;
-    int shift = im->shift;
+    uint16_t w1 = (uint16_t)ph->w, w0 = (uint16_t)(STREAM_W_ONE - w1);
     int x0 = tx << TILE_LOG2, y0 = ty << TILE_LOG2;
     int x1 = x0 + (1 << TILE_LOG2) < im->w ? x0 + (1 << TILE_LOG2) : im->w;
     int y1 = y0 + (1 << TILE_LOG2) < im->h ? y0 + (1 << TILE_LOG2) : im->h;
     size_t row = 4 * (size_t)im->w, stride = 4 * (size_t)(im->w + 1);
     size_t span = 4 * (size_t)(x1 - x0);
+    size_t last = 4 * (size_t)(x1 & (im->w - 1));   /* source of the column after the span */
     const uint8_t *a = im->t->data + table_offset(t, im->level, f0);
     const uint8_t *b = im->t->data + table_offset(t, im->level, f1);
     float sc[BLEND_BLOCK], bi[BLEND_BLOCK];
@@ -364,18 +418,27 @@ static void blend_tile(struct f4_image *im, int tx, int ty)
         sc[k] = im->sc[k & 3];
         bi[k] = im->bi[k & 3];
     }
-    for (int y = y0; y <= y1; y++) {
-        size_t src = (size_t)(y & (im->h - 1)) * row, k = 0;
-        const uint8_t *ra = a + src + 4 * (size_t)x0, *rb = b + src + 4 * (size_t)x0;
-        float *o = im->data + (size_t)y * stride + 4 * (size_t)x0;
-        size_t last = 4 * (size_t)(x1 & (im->w - 1));   /* source of the column after the span */
-        for (; k + BLEND_BLOCK <= span; k += BLEND_BLOCK)
-            blend_block(o + k, ra + k, rb + k, sc, bi, w0, w1, rnd, shift);
-        for (; k < span; k++)
-            o[k] = bi[k] + sc[k] * (uint16_t)((uint16_t)(ra[k] * w0 + rb[k] * w1 + rnd) >> shift);
-        for (int c = 0; c < 4; c++)
-            o[span + c] = bi[c] + sc[c] * (uint16_t)((uint16_t)(a[src + last + c] * w0 +
-                                                                b[src + last + c] * w1 + rnd) >> shift);
+    if (span % BLEND_BLOCK) {
+        /* images narrower than a block: one texel at a time */
+        for (int y = y0; y <= y1; y++) {
+            size_t src = (size_t)(y & (im->h - 1)) * row;
+            float *o = im->data + (size_t)y * stride + 4 * (size_t)x0;
+            for (size_t k = 0; k <= span; k += 4)
+                blend_row(o + k, NULL, NULL, a + src + (k < span ? 4 * (size_t)x0 + k : last),
+                          b + src + (k < span ? 4 * (size_t)x0 + k : last), 0, sc, bi, w0, w1,
+                          im->rnd, im->shift);
+        }
+    } else {
+        for (int y = y0; y <= y1; y++) {
+            size_t src = (size_t)(y & (im->h - 1)) * row;
+            const uint8_t *ra = a + src + 4 * (size_t)x0, *rb = b + src + 4 * (size_t)x0;
+            float *o = im->data + (size_t)y * stride + 4 * (size_t)x0;
+            if (im->shift)
+                blend_row(o, ra, rb, a + src + last, b + src + last, span, sc, bi, w0, w1,
+                          STREAM_W_ONE / 2, 8);
+            else
+                blend_row(o, ra, rb, a + src + last, b + src + last, span, sc, bi, w0, w1, 0, 0);
+        }
     }
     im->stamp[ty * im->tiles_x + tx] = im->gen;
 }
@@ -389,31 +452,10 @@ static inline void image_phase(struct f4_image *im, const struct stream_phase *p
     im->gen++;
 }
 
-/* Bilinear sample of a float4 image at texel coordinates (x, y), wrapped (power-of-two sizes),
- * blending the tile first if it is stale. COORD_BIAS, a multiple of the size, makes the
- * coordinates positive so truncation floors them (|x| < 2^30 texels; the fraction keeps 2^-22
- * texel). */
-static inline void sample_f4(struct f4_image *im, double x, double y, float out[4])
-{
-    /* the image's fields in locals: stores to the vertices may not alias them */
-    const int wm = im->w - 1, hm = im->h - 1;
-    const float *data = im->data;
-    double bx = x + COORD_BIAS, by = y + COORD_BIAS;
-    long long ix = (long long)bx, iy = (long long)by;
-    float fx = (float)(bx - (double)ix), fy = (float)(by - (double)iy);
-    int xi = (int)(ix & wm), yi = (int)(iy & hm);
-    size_t stride = 4 * (size_t)(wm + 2);
-    if (im->stamp[(yi >> TILE_LOG2) * im->tiles_x + (xi >> TILE_LOG2)] != im->gen)
-        blend_tile(im, xi >> TILE_LOG2, yi >> TILE_LOG2);
-    const float *a = data + (size_t)yi * stride + 4 * (size_t)xi;
-    const float *c = a + stride;
-    for (int k = 0; k < 4; k++) {
-        float top = a[k] + (a[k + 4] - a[k]) * fx, bot = c[k] + (c[k + 4] - c[k]) * fx;
-        out[k] = top + (bot - top) * fy;
-    }
-}
-
-/* The same at the same coordinates in two images of the same size (slope and whitecaps). */
+/* Bilinear samples at texel coordinates (x, y), wrapped (power-of-two sizes), of two float4
+ * images of the same size (slope and whitecaps), blending their tiles first if they are stale.
+ * COORD_BIAS, a multiple of the size, makes the coordinates positive so truncation floors them
+ * (|x| < 2^30 texels; the fraction keeps 2^-22 texel). */
 static inline void sample_f4x2(struct f4_image *im, struct f4_image *im2, double x, double y,
                                float out[4], float out2[4])
 {
@@ -460,30 +502,87 @@ int grid_mip_level(float r, int levels)
     return mip_level(r, levels - 1);
 }
 
+/* Each block's smallest footprint: eq. 2's weight falls with the footprint, so a pattern whose
+ * weight is 0 there has weight 0 for the whole block. n is a multiple of VBLK. */
+static void block_foot(int n, const float *restrict foot, float *restrict out)
+{
+    for (int b = 0; b < n; b += VBLK) {
+        float m[VBLK / 2];
+        for (int e = 0; e < VBLK / 2; e++)
+            m[e] = foot[b + e + VBLK / 2] < foot[b + e] ? foot[b + e + VBLK / 2] : foot[b + e];
+        for (int e = 1; e < VBLK / 2; e++)
+            m[0] = m[e] < m[0] ? m[e] : m[0];
+        out[b / VBLK] = m[0];
+    }
+}
+
 /* Add pattern f's displacement, weighted by Bruneton eq. 2 for each vertex's cell of size foot,
- * to acc (float4 per vertex). */
-static void disp_pass(const struct grid *g, struct pattern_frame *f, const float *verts,
-                      float *restrict acc, int first)
+ * to acc (float4 per vertex). By blocks of VBLK vertices: the weights, and for blocks with some
+ * weight > 0 the texel coordinates (in double, as sample_f4x2 does) and offsets, in fixed-size
+ * loops the compiler vectorises; then one bilinear float4 fetch per vertex of the block (a
+ * vertex of weight 0 adds 0 times a finite texel: the images start zeroed). */
+static void disp_pass(const struct grid *g, const struct pattern_frame *f, float *restrict acc)
 {
     struct f4_image im = f->p->disp_f;   /* a local copy: vertex stores may not alias it */
     const float lambda_m = f->lambda_m;
-    const double x0 = f->x0, y0 = f->y0, kx = f->kx, ky = f->ky;
-    for (int k = 0; k < g->nverts; k++) {
-        float foot = g->foot[k], x = lambda_m / (foot > 1e-6f ? foot : 1e-6f), w, d[4];
-        float *sum = acc + 4 * (size_t)k;
-        if (first)
-            for (int c = 0; c < 4; c++)
-                sum[c] = 0.0f;
-        if (!(x > FILTER_NMIN))
+    const double x0 = f->x0 + COORD_BIAS, y0 = f->y0 + COORD_BIAS, kx = f->kx, ky = f->ky;
+    const int wm = im.w - 1, hm = im.h - 1;
+    const int wshift = __builtin_ctz((unsigned)im.w), tshift = __builtin_ctz((unsigned)im.tiles_x);
+    const size_t stride = 4 * ((size_t)im.w + 1);
+    const float *restrict rx = g->rx, *restrict ry = g->ry;
+    const float *restrict foot = g->foot, *restrict fade = g->fade;
+    /* eq. 2's clamp bounds loaded, not constants: with constants GCC threads the clamp's
+     * branches (w is 0 or 1 there) and can then no longer vectorise the loop */
+    const float u_lo = g->unit[0], u_hi = g->unit[1];
+    const uint32_t frame = g->frame;
+    /* eq. 2's weight is 0 for footprints over lambda / Nmin; a block is skipped from a hair
+     * above that (the exact per-vertex test decides the rest) */
+    const float foot_zero = lambda_m / FILTER_NMIN * (1.0f + 1e-5f);
+    for (int b = 0; b < g->npad; b += VBLK) {
+        float wv[VBLK], fx[VBLK], fy[VBLK];
+        int off[VBLK], tile[VBLK], on = 0;
+        if (g->blk_foot[b / VBLK] >= foot_zero)
+            continue;   /* w = 0 at the block's smallest footprint: so for all its vertices */
+        for (int e = 0; e < VBLK; e++) {
+            float ft = foot[b + e];
+            ft = ft > 1e-6f ? ft : 1e-6f;
+            float u = (lambda_m / ft - FILTER_NMIN) * (1.0f / (FILTER_NMAX - FILTER_NMIN));
+            u = u > u_lo ? u : u_lo;
+            u = u < u_hi ? u : u_hi;
+            wv[e] = fade[b + e] * (u * u * (3.0f - 2.0f * u));
+            on += wv[e] > 0.0f;
+        }
+        if (!on)
             continue;   /* w = 0: waves shorter than Nmin cells are cancelled */
-        w = x >= FILTER_NMAX ? g->fade[k]
-                             : g->fade[k] * grid_filter_weight(FILTER_NMIN, FILTER_NMAX, x);
-        if (!(w > 0.0f))
-            continue;
-        const float *vx = verts + (size_t)k * GRID_FLOATS + GRID_A_REST;
-        sample_f4(&im, x0 + vx[0] * kx, y0 + vx[1] * ky, d);
-        for (int c = 0; c < 4; c++)
-            sum[c] += w * d[c];
+        if (g->acc_frame[b / VBLK] != frame) {
+            /* the block's first displacement this frame */
+            for (int e = 0; e < 4 * VBLK; e++)
+                acc[4 * (size_t)b + e] = 0.0f;
+            g->acc_frame[b / VBLK] = frame;
+        }
+        /* COORD_BIAS (a multiple of the size, < 2^31) makes the coordinates positive so
+         * truncation floors them (|x| < 2^30 texels; the fraction keeps 2^-22 texel) */
+        for (int e = 0; e < VBLK; e++) {
+            double x = x0 + rx[b + e] * kx, y = y0 + ry[b + e] * ky;
+            int ix = (int)x, iy = (int)y;
+            fx[e] = (float)(x - (double)ix);
+            fy[e] = (float)(y - (double)iy);
+            ix &= wm;
+            iy &= hm;
+            off[e] = (iy << wshift) + iy + ix;    /* iy (w + 1) + ix */
+            tile[e] = ((iy >> TILE_LOG2) << tshift) + (ix >> TILE_LOG2);
+        }
+        for (int e = 0; e < VBLK; e++) {
+            if (im.stamp[tile[e]] != im.gen)
+                blend_tile(&im, tile[e] & (im.tiles_x - 1), tile[e] >> tshift);
+            const float *a = im.data + 4 * (size_t)off[e], *c = a + stride;
+            const float w = wv[e], sx = fx[e], sy = fy[e];
+            float *sum = acc + 4 * (size_t)(b + e);
+            for (int k = 0; k < 4; k++) {
+                float top = a[k] + (a[k + 4] - a[k]) * sx, bot = c[k] + (c[k + 4] - c[k]) * sx;
+                sum[k] += w * (top + (bot - top) * sy);
+            }
+        }
     }
 }
 
@@ -498,8 +597,8 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
     for (int k = 0; k < g->nverts; k++) {
         float *vx = verts + (size_t)k * GRID_FLOATS, m[4], q[4];
         int lev = mip_level(g->foot[k] * f->lev_k, top);
-        double x = f->mx0[lev] + vx[GRID_A_REST] * f->mk[lev];
-        double y = f->my0[lev] + vx[GRID_A_REST + 1] * f->mk[lev];
+        double x = f->mx0[lev] + g->rx[k] * f->mk[lev];
+        double y = f->my0[lev] + g->ry[k] * f->mk[lev];
         sample_f4x2(&p->slope_f[lev], &p->wc_f[lev], x, y, m, q);
         vx[GRID_A_SLOPE] += m[0];
         vx[GRID_A_SLOPE + 1] += m[1];
@@ -561,23 +660,66 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
     return p->top > p->bot;
 }
 
-static int update_projected(struct grid *g, const struct camera *cam, float aspect, float *verts)
+/* Footprint of vertex (i, j) of the projected grid: the larger distance to the next vertex
+ * along the row and down the column (the previous one for the last). */
+static float grid_foot_at(const struct grid *g, int i, int j)
+{
+    size_t k = (size_t)j * g->w + i;
+    size_t kx = i + 1 < g->w ? k + 1 : k - 1, ky = j + 1 < g->h ? k + g->w : k - g->w;
+    float fx = maxf(fabsf(g->rx[kx] - g->rx[k]), fabsf(g->ry[kx] - g->ry[k]));
+    float fy = maxf(fabsf(g->rx[ky] - g->rx[k]), fabsf(g->ry[ky] - g->ry[k]));
+    return maxf(fx, fy);
+}
+
+/* Rest positions t_row (row + sx rgt) of n (a multiple of VBLK) rays of a row that all meet
+ * the sea plane within dmax; restrict parameters let the compiler vectorise without alias
+ * checks. */
+static void project_row(int n, double t_row, const double row[3], const double rgt[2],
+                        const double *restrict sx, float *restrict x, float *restrict y)
+{
+    const double r0 = row[0], r1 = row[1], g0 = rgt[0], g1 = rgt[1];
+    for (int b = 0; b < n; b += VBLK)
+        for (int e = 0; e < VBLK; e++) {
+            x[b + e] = (float)(t_row * (r0 + sx[b + e] * g0));
+            y[b + e] = (float)(t_row * (r1 + sx[b + e] * g1));
+        }
+}
+
+/* grid_foot_at for n (a multiple of VBLK) vertices of a flat row-major grid of row width w,
+ * reading vertex k + 1 and k + w, right for all but the last column and the last row. */
+static void foot_blocks(int n, int w, const float *restrict rx, const float *restrict ry,
+                        float *restrict foot)
+{
+    for (int b = 0; b < n; b += VBLK)
+        for (int e = 0; e < VBLK; e++) {
+            int k = b + e;
+            float fx = maxf(fabsf(rx[k + 1] - rx[k]), fabsf(ry[k + 1] - ry[k]));
+            float fy = maxf(fabsf(rx[k + w] - rx[k]), fabsf(ry[k + w] - ry[k]));
+            foot[k] = maxf(fx, fy);
+        }
+}
+
+static int update_projected(struct grid *g, const struct camera *cam, float aspect)
 {
     struct grid_projection p;
     if (!projection_frame(g, cam, aspect, &p))
         return 0;
     const double *fwd = p.fwd, *right = p.right, *up = p.up;
-    double alt = p.alt, alt_ray = p.alt_ray, tx = p.tx, ty = p.ty, dmax = p.dmax;
+    double alt_ray = p.alt_ray, tx = p.tx, ty = p.ty, dmax = p.dmax;
     double margin = p.margin, top = p.top, bot = p.bot;
+    const int w = g->w, h = g->h;
+    double *restrict col_sx = g->col_sx;
+    float *restrict row_x = g->row_x, *restrict row_y = g->row_y;
     /* Per row the ray is d = row + sx tx right with row = fwd + sy ty up; right is horizontal, so
      * d_z and the sea-plane hit distance alt_ray / -d_z are the row's; a ray hits the plane
      * within dmax when |d_xy| < -d_z dmax / alt_ray. */
     double rgt[2] = { tx * right[0], tx * right[1] };
-    double dsx = 2.0 * (1.0 + margin) / (g->w - 1);   /* NDC x step between columns */
-    for (int j = 0; j < g->h; j++) {
-        double sy = top + (bot - top) * j / (g->h - 1);
+    double dsx = 2.0 * (1.0 + margin) / (w - 1);   /* NDC x step between columns */
+    for (int i = 0; i < g->ws; i++)
+        col_sx[i] = -1.0 - margin + dsx * i;
+    for (int j = 0; j < h; j++) {
+        double sy = top + (bot - top) * j / (h - 1);
         double row[3], t_row = 0.0, lim2 = -1.0;
-        float *vx = verts + (size_t)j * g->w * GRID_FLOATS;
         for (int c = 0; c < 3; c++)
             row[c] = fwd[c] + sy * ty * up[c];
         if (-row[2] > 0.0) {
@@ -585,36 +727,75 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
             t_row = alt_ray / -row[2];
             lim2 = lim * lim;
         }
-        for (int i = 0; i < g->w; i++, vx += GRID_FLOATS) {
-            double sx = -1.0 - margin + dsx * i;
-            double dx = row[0] + sx * rgt[0], dy = row[1] + sx * rgt[1];
-            double dxy2 = dx * dx + dy * dy, t;
-            /* Rays at or above the horizon end at the far distance along their azimuth. */
-            t = dxy2 < lim2 ? t_row : dmax / (dxy2 > 1e-24 ? sqrt(dxy2) : 1e-12);
-            vx[GRID_A_REST] = (float)(t * dx);
-            vx[GRID_A_REST + 1] = (float)(t * dy);
-            vx[GRID_A_POS + 2] = (float)-alt;
+        /* |d_xy|^2 is convex in sx: when both end rays hit the plane within dmax, all do */
+        double ex0 = row[0] + col_sx[0] * rgt[0], ey0 = row[1] + col_sx[0] * rgt[1];
+        double ex1 = row[0] + col_sx[w - 1] * rgt[0], ey1 = row[1] + col_sx[w - 1] * rgt[1];
+        if (ex0 * ex0 + ey0 * ey0 < lim2 && ex1 * ex1 + ey1 * ey1 < lim2) {
+            project_row(g->ws, t_row, row, rgt, col_sx, row_x, row_y);
+        } else {
+            for (int i = 0; i < w; i++) {
+                double sx = col_sx[i];
+                double dx = row[0] + sx * rgt[0], dy = row[1] + sx * rgt[1];
+                double dxy2 = dx * dx + dy * dy, t;
+                /* Rays at or above the horizon end at the far distance along their azimuth. */
+                t = dxy2 < lim2 ? t_row : dmax / (dxy2 > 1e-24 ? sqrt(dxy2) : 1e-12);
+                row_x[i] = (float)(t * dx);
+                row_y[i] = (float)(t * dy);
+            }
         }
+        memcpy(g->rx + (size_t)j * w, row_x, sizeof(float) * (size_t)w);
+        memcpy(g->ry + (size_t)j * w, row_y, sizeof(float) * (size_t)w);
     }
-    /* footprint: the larger distance to the next vertex along the row and down the column (the
-     * previous one for the last) */
-    float lo = INFINITY, hi = 0.0f;
-    for (int j = 0; j < g->h; j++) {
-        const float *a = verts + (size_t)j * g->w * GRID_FLOATS + GRID_A_REST;
-        ptrdiff_t down = (j + 1 < g->h ? 1 : -1) * (ptrdiff_t)g->w * GRID_FLOATS;
-        float *foot = g->foot + (size_t)j * g->w;
-        for (int i = 0; i < g->w; i++, a += GRID_FLOATS) {
-            const float *bx = a + (i + 1 < g->w ? GRID_FLOATS : -GRID_FLOATS), *by = a + down;
-            float fx = maxf(fabsf(bx[0] - a[0]), fabsf(bx[1] - a[1]));
-            float fy = maxf(fabsf(by[0] - a[0]), fabsf(by[1] - a[1]));
-            float f = maxf(fx, fy);
-            foot[i] = f;
-            lo = f < lo ? f : lo;
-            hi = maxf(hi, f);
+    /* footprints (grid_foot_at) by blocks over the flat arrays, reading the next vertex and the
+     * one a row down; the last column and the last row, whose neighbours are the previous ones,
+     * are redone one by one, and the padding copies the last vertex (neutral for lo and hi) */
+    const float *restrict rx = g->rx, *restrict ry = g->ry;
+    float *restrict foot = g->foot;
+    float lo8[VBLK], hi8[VBLK];
+    foot_blocks(g->npad, w, rx, ry, foot);
+    for (int j = 0; j < h; j++)
+        foot[(size_t)j * w + w - 1] = grid_foot_at(g, w - 1, j);
+    for (int i = 0; i < w; i++)
+        foot[(size_t)(h - 1) * w + i] = grid_foot_at(g, i, h - 1);
+    for (int k = g->nverts; k < g->npad; k++)
+        foot[k] = foot[g->nverts - 1];
+    for (int e = 0; e < VBLK; e++) {
+        lo8[e] = INFINITY;
+        hi8[e] = 0.0f;
+    }
+    for (int b = 0; b < g->npad; b += VBLK)
+        for (int e = 0; e < VBLK; e++) {
+            float f = foot[b + e];
+            lo8[e] = f < lo8[e] ? f : lo8[e];
+            hi8[e] = f > hi8[e] ? f : hi8[e];
         }
+    float lo = INFINITY, hi = 0.0f;
+    for (int e = 0; e < VBLK; e++) {
+        lo = lo8[e] < lo ? lo8[e] : lo;
+        hi = maxf(hi, hi8[e]);
     }
     g->foot_lo = g->foot_lo_wet = lo;
     g->foot_hi = hi;
+    /* each grid row's smallest squared distance (row_distances) */
+    for (int j = 0; j < h; j++) {
+        const float *x = rx + (size_t)j * w, *y = ry + (size_t)j * w;
+        float m8[VBLK], m = INFINITY;
+        int i = 0;
+        for (int e = 0; e < VBLK; e++)
+            m8[e] = INFINITY;
+        for (; i + VBLK <= w; i += VBLK)
+            for (int e = 0; e < VBLK; e++) {
+                float d2 = x[i + e] * x[i + e] + y[i + e] * y[i + e];
+                m8[e] = d2 < m8[e] ? d2 : m8[e];
+            }
+        for (; i < w; i++) {
+            float d2 = x[i] * x[i] + y[i] * y[i];
+            m = d2 < m ? d2 : m;
+        }
+        for (int e = 0; e < VBLK; e++)
+            m = m8[e] < m ? m8[e] : m;
+        g->row_d2[j] = m;
+    }
     return g->nidx;
 }
 
@@ -622,7 +803,7 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
  * world space (no swimming), whose displacement fades to zero on its border (Hu: border heights
  * forced to zero so the patches stitch), and a flat far patch of FAR_RINGS square rings growing
  * geometrically from the near border to the far plane, bump-mapped only. */
-static int update_patches(struct grid *g, const struct camera *cam, float aspect, float *verts)
+static int update_patches(struct grid *g, const struct camera *cam, float aspect)
 {
     double alt = cam->pos[2] > 0.5 ? cam->pos[2] : 0.5;
     double half = fmin(fmax(8.0 * alt, 64.0), 4000.0);
@@ -639,26 +820,22 @@ static int update_patches(struct grid *g, const struct camera *cam, float aspect
         for (int m = 0; m < per; m++) {
             int side = m / (NEAR_N - 1), e = m % (NEAR_N - 1);
             double a = -1.0 + 2.0 * e * inv, x, y;
-            float *vx = verts + (size_t)(k * per + m) * GRID_FLOATS;
             switch (side) {
             case 0: x = a; y = -1.0; break;
             case 1: x = 1.0; y = a; break;
             case 2: x = -a; y = 1.0; break;
             default: x = -1.0; y = -a; break;
             }
-            vx[GRID_A_REST] = (float)(ox + s * x);
-            vx[GRID_A_REST + 1] = (float)(oy + s * y);
-            vx[GRID_A_POS + 2] = (float)-alt;
+            g->rx[k * per + m] = (float)(ox + s * x);
+            g->ry[k * per + m] = (float)(oy + s * y);
             g->foot[k * per + m] = foot;
         }
     }
     for (int j = 0; j < NEAR_N; j++)
         for (int i = 0; i < NEAR_N; i++) {
             double x = -1.0 + 2.0 * i * inv, y = -1.0 + 2.0 * j * inv;
-            float *vx = verts + (size_t)(near0 + j * NEAR_N + i) * GRID_FLOATS;
-            vx[GRID_A_REST] = (float)(ox + half * x);
-            vx[GRID_A_REST + 1] = (float)(oy + half * y);
-            vx[GRID_A_POS + 2] = (float)-alt;
+            g->rx[near0 + j * NEAR_N + i] = (float)(ox + half * x);
+            g->ry[near0 + j * NEAR_N + i] = (float)(oy + half * y);
             g->foot[near0 + j * NEAR_N + i] = (float)cell;
         }
     /* the rings' footprints grow outwards from the near patch's cell; only the near patch has
@@ -687,14 +864,17 @@ void grid_row_span(const struct grid *g, int row, int *first, int *count, float 
 }
 
 /* Smallest squared horizontal distance from the camera of each row's vertices (both edges of
- * the row), from their rest positions. */
-static void row_distances(struct grid *g, const float *verts)
+ * the row), from their rest positions: on the projected grid the smaller of its two grid rows'
+ * (update_projected). */
+static void row_distances(struct grid *g)
 {
     int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per;
     for (int r = 0; r < g->rows; r++) {
         int a0, n, b0;
         if (g->kind == 0) {
-            a0 = r * g->w; b0 = a0 + g->w; n = g->w;
+            float a = g->row_d2[r], b = g->row_d2[r + 1];
+            g->row_foot[r] = b < a ? b : a;
+            continue;
         } else if (r < FAR_RINGS) {
             /* ring k = FAR_RINGS - 1 - r is drawn r-th (outermost first) */
             int k = FAR_RINGS - 1 - r;
@@ -705,9 +885,9 @@ static void row_distances(struct grid *g, const float *verts)
         }
         float m = INFINITY;
         for (int e = 0; e < 2; e++) {
-            const float *v = verts + (size_t)(e ? b0 : a0) * GRID_FLOATS + GRID_A_REST;
-            for (int i = 0; i < n; i++, v += GRID_FLOATS) {
-                float d2 = v[0] * v[0] + v[1] * v[1];
+            const float *x = g->rx + (e ? b0 : a0), *y = g->ry + (e ? b0 : a0);
+            for (int i = 0; i < n; i++) {
+                float d2 = x[i] * x[i] + y[i] * y[i];
                 m = d2 < m ? d2 : m;    /* fminf is a libm call at -O2 on x86 */
             }
         }
@@ -715,12 +895,32 @@ static void row_distances(struct grid *g, const float *verts)
     }
 }
 
+/* The vertex attributes of n vertices from their rest positions and summed displacements d;
+ * the moments are 0 (foam opacity 0) without CPU patterns, else the foam slot's clear fraction
+ * becomes the opacity. */
+static inline void write_block(float *restrict vx, int n, const float *restrict rx,
+                               const float *restrict ry, const float *restrict d, float z, int cpu)
+{
+    for (int e = 0; e < n; e++, vx += GRID_FLOATS, d += 4) {
+        vx[GRID_A_POS + 0] = rx[e] + d[0];
+        vx[GRID_A_POS + 1] = ry[e] + d[1];
+        vx[GRID_A_POS + 2] = z + d[2];
+        vx[GRID_A_REST] = rx[e];
+        vx[GRID_A_REST + 1] = ry[e];
+        if (cpu) {
+            vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
+        } else {
+            for (int c = GRID_A_SLOPE; c <= GRID_A_FOAM; c++)
+                vx[c] = 0.0f;
+        }
+    }
+}
+
 int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts)
 {
     struct pattern_frame pf[SWELL_MAX_PATTERNS];
     int n, np = 0;
-    n = g->kind == 0 ? update_projected(g, cam, aspect, verts)
-                     : update_patches(g, cam, aspect, verts);
+    n = g->kind == 0 ? update_projected(g, cam, aspect) : update_patches(g, cam, aspect);
     if (n == 0)
         return 0;
     float foot_lo = g->foot_lo_wet > 1e-6f ? g->foot_lo_wet : 1e-6f;
@@ -762,29 +962,43 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             }
         }
     }
-    int summed = 0;
-    for (int k = 0; k < g->nverts; k++) {
-        float *vx = verts + (size_t)k * GRID_FLOATS;
-        for (int c = GRID_A_SLOPE; c < GRID_A_FOAM; c++)
-            vx[c] = 0.0f;
-        vx[GRID_A_FOAM] = 1.0f;
-    }
+    int cpu = 0;
+    for (int i = 0; i < np; i++)
+        cpu |= pf[i].p->cpu;
+    if (++g->frame == 0)
+        g->frame = 1;   /* after 2^32 frames: stale blocks must never match */
+    for (int i = 0; i < np; i++)
+        if (pf[i].disp_on) {
+            block_foot(g->npad, g->foot, g->blk_foot);
+            break;
+        }
     for (int i = 0; i < np; i++)
         if (pf[i].disp_on)
-            disp_pass(g, &pf[i], verts, g->acc, !summed++);
-    for (int i = 0; i < np; i++)
-        if (pf[i].p->cpu)
-            moment_pass(g, &pf[i], verts);
-    for (int k = 0; k < g->nverts; k++) {
-        float *vx = verts + (size_t)k * GRID_FLOATS;
-        static const float none[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-        const float *d = summed ? g->acc + 4 * (size_t)k : none;
-        vx[GRID_A_POS + 0] = vx[GRID_A_REST] + d[0];
-        vx[GRID_A_POS + 1] = vx[GRID_A_REST + 1] + d[1];
-        vx[GRID_A_POS + 2] += d[2];
-        vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
+            disp_pass(g, &pf[i], g->acc);
+    if (cpu) {
+        for (int k = 0; k < g->nverts; k++) {
+            float *vx = verts + (size_t)k * GRID_FLOATS;
+            for (int c = GRID_A_SLOPE; c < GRID_A_FOAM; c++)
+                vx[c] = 0.0f;
+            vx[GRID_A_FOAM] = 1.0f;
+        }
+        for (int i = 0; i < np; i++)
+            if (pf[i].p->cpu)
+                moment_pass(g, &pf[i], verts);
     }
-    row_distances(g, verts);
+    static const float none[4 * VBLK];
+    const float z = (float)-(cam->pos[2] > 0.5 ? cam->pos[2] : 0.5);
+    const float *rx = g->rx, *ry = g->ry;
+    for (int b = 0; b < g->nverts; b += VBLK) {
+        /* blocks no pass displaced this frame add zeros */
+        const float *d = g->acc_frame[b / VBLK] == g->frame ? g->acc + 4 * (size_t)b : none;
+        float *vx = verts + (size_t)b * GRID_FLOATS;
+        if (b + VBLK <= g->nverts)
+            write_block(vx, VBLK, rx + b, ry + b, d, z, cpu);
+        else
+            write_block(vx, g->nverts - b, rx + b, ry + b, d, z, cpu);
+    }
+    row_distances(g);
     return n;
 }
 

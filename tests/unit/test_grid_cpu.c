@@ -258,12 +258,132 @@ static void test_grid_against_reference(void **state)
     tables_destroy(&s);
 }
 
+/* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
+ * sea within the far distance vectorised) against the ray-plane intersection of Bruneton §3
+ * evaluated per vertex in double from grid_projection's frame, and each row's smallest squared
+ * distance against the brute-force minimum over its two grid rows; for widths that are and are
+ * not a multiple of the block, and views down, at the horizon (rows ending at the far distance)
+ * and from high up. */
+static void test_projection_against_reference(void **state)
+{
+    static const int sizes[][2] = { { 33, 25 }, { 40, 20 }, { 96, 64 }, { 7, 3 } };
+    static const float pitch[] = { -20.0f, 2.0f, -60.0f };
+    static const double alt[] = { 6.0, 1.5, 1000.0 };
+    struct swell_tables s;
+    struct swell_err err;
+    (void)state;
+    make_tables(&s);
+    for (size_t si = 0; si < sizeof(sizes) / sizeof(sizes[0]); si++)
+        for (size_t ci = 0; ci < sizeof(pitch) / sizeof(pitch[0]); ci++) {
+            struct grid_desc d = { 0 };
+            struct grid *g;
+            struct camera c;
+            struct grid_projection p;
+            int w = sizes[si][0], h = sizes[si][1], far_rays = 0;
+            d.tables = &s;
+            d.w = w;
+            d.h = h;
+            assert_int_equal(grid_create(&d, &g, &err), 0);
+            float *verts = calloc((size_t)grid_vertex_count(g) * GRID_FLOATS, sizeof(float));
+            camera_defaults(&c);
+            c.pos[0] = -5000.25;
+            c.pos[1] = 777.0;
+            c.pos[2] = alt[ci];
+            c.heading_deg = 33.0f;
+            c.pitch_deg = pitch[ci];
+            assert_true(grid_update(g, &c, 16.0f / 9.0f, 1.25, verts) > 0);
+            /* grid_projection fills the frame (its own row distances are overwritten below) */
+            assert_true(grid_projection(g, &c, 16.0f / 9.0f, &p) > 0);
+            assert_true(grid_update(g, &c, 16.0f / 9.0f, 1.25, verts) > 0);
+            for (int j = 0; j < h; j++)
+                for (int i = 0; i < w; i++) {
+                    const float *vx = verts + (size_t)(j * w + i) * GRID_FLOATS;
+                    double sx = -1.0 - p.margin + 2.0 * (1.0 + p.margin) * i / (w - 1);
+                    double sy = p.top + (p.bot - p.top) * j / (h - 1), r[3];
+                    for (int k = 0; k < 3; k++)
+                        r[k] = p.fwd[k] + sy * p.ty * p.up[k] + sx * p.tx * p.right[k];
+                    double dxy = sqrt(r[0] * r[0] + r[1] * r[1]), t;
+                    if (-r[2] > 0.0 && dxy < -r[2] * p.dmax / p.alt_ray) {
+                        t = p.alt_ray / -r[2];
+                    } else {
+                        t = p.dmax / fmax(dxy, 1e-12);
+                        far_rays++;
+                    }
+                    for (int k = 0; k < 2; k++)
+                        assert_true(fabs(vx[GRID_A_REST + k] - t * r[k]) <= 1e-6 * fmax(1.0, t * dxy));
+                    assert_true(isfinite(vx[GRID_A_POS + 2]));
+                }
+            for (int r = 0; r < grid_row_count(g); r++) {
+                int first, count;
+                float d2, m = INFINITY;
+                grid_row_span(g, r, &first, &count, &d2);
+                for (int i = 0; i < 2 * w; i++) {
+                    const float *vx = verts + (size_t)(r * w + i) * GRID_FLOATS + GRID_A_REST;
+                    float e2 = vx[0] * vx[0] + vx[1] * vx[1];
+                    m = e2 < m ? e2 : m;
+                }
+                assert_true(d2 == m);
+            }
+            /* the horizon view has rows ending at the far distance, the others none */
+            if (pitch[ci] > 0.0f)
+                assert_true(far_rays > 0);
+            free(verts);
+            grid_destroy(g);
+        }
+    tables_destroy(&s);
+}
+
+/* Hu 2006 near/far patches through the same block passes: only vertices inside the near
+ * patch's border (max(8 alt, 64 m) from the camera on each axis) are displaced, the border and
+ * the far rings keep their rest position on z = -alt, and every attribute is finite. */
+static void test_patches(void **state)
+{
+    struct swell_tables s;
+    struct grid *g;
+    struct grid_desc d = { 0 };
+    struct camera c;
+    struct swell_err err;
+    int moved = 0, still = 0;
+    (void)state;
+    make_tables(&s);
+    d.tables = &s;
+    d.kind = 1;
+    assert_int_equal(grid_create(&d, &g, &err), 0);
+    float *verts = calloc((size_t)grid_vertex_count(g) * GRID_FLOATS, sizeof(float));
+    camera_defaults(&c);
+    c.pos[0] = 321.5;
+    c.pos[1] = -99.0;
+    c.pos[2] = 6.0;
+    assert_true(grid_update(g, &c, 16.0f / 9.0f, 0.6, verts) > 0);
+    for (int k = 0; k < grid_vertex_count(g); k++) {
+        const float *vx = verts + (size_t)k * GRID_FLOATS;
+        for (int a = 0; a < GRID_FLOATS; a++)
+            assert_true(isfinite(vx[a]));
+        if (vx[GRID_A_POS] == vx[GRID_A_REST] && vx[GRID_A_POS + 1] == vx[GRID_A_REST + 1] &&
+            vx[GRID_A_POS + 2] == -6.0f) {
+            still++;
+        } else {
+            moved++;
+            /* strictly inside the border, which is at 64 m (64 cells of 1 m) around the
+             * camera snapped to the cell: x in [-64.5, 63.5], y in [-64, 64] */
+            assert_true(fabs(vx[GRID_A_REST] + 0.5) < 63.75 && fabs(vx[GRID_A_REST + 1]) < 63.75);
+        }
+    }
+    assert_true(moved > 1000);
+    assert_true(still > 1000);
+    free(verts);
+    grid_destroy(g);
+    tables_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stream_blend_exact),
         cmocka_unit_test(test_mip_level),
         cmocka_unit_test(test_grid_against_reference),
+        cmocka_unit_test(test_projection_against_reference),
+        cmocka_unit_test(test_patches),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
