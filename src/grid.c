@@ -391,10 +391,13 @@ static inline void blend_row(float *restrict o, const uint8_t *restrict ra,
                              const float *restrict bi, uint16_t w0, uint16_t w1,
                              const uint16_t rnd, const int shift)
 {
+    uint16_t v[4];
     for (size_t k = 0; k < n; k += BLEND_BLOCK)
         blend_block(o + k, ra + k, rb + k, sc, bi, w0, w1, rnd, shift);
     for (int c = 0; c < 4; c++)
-        o[n + c] = bi[c] + sc[c] * (uint16_t)((uint16_t)(ea[c] * w0 + eb[c] * w1 + rnd) >> shift);
+        v[c] = (uint16_t)((uint16_t)(ea[c] * w0 + eb[c] * w1 + rnd) >> shift);
+    for (int c = 0; c < 4; c++)
+        o[n + c] = bi[c] + sc[c] * v[c];
 }
 
 /* Blend tile (tx, ty) of im for its phase: texels [x0, x0 + TILE] x [y0, y0 + TILE] clipped to
@@ -517,10 +520,11 @@ static void block_foot(int n, const float *restrict foot, float *restrict out)
 }
 
 /* Add pattern f's displacement, weighted by Bruneton eq. 2 for each vertex's cell of size foot,
- * to acc (float4 per vertex). By blocks of VBLK vertices: the weights, and for blocks with some
- * weight > 0 the texel coordinates (in double, as sample_f4x2 does) and offsets, in fixed-size
- * loops the compiler vectorises; then one bilinear float4 fetch per vertex of the block (a
- * vertex of weight 0 adds 0 times a finite texel: the images start zeroed). */
+ * to acc (float4 per vertex). By blocks of VBLK vertices: for blocks whose smallest footprint
+ * gives a weight > 0, the weights, texel coordinates (in double, as sample_f4x2 does) and
+ * offsets in fixed-size loops the compiler vectorises; then one bilinear float4 fetch per vertex
+ * of the block (a vertex of weight 0, or of fade 0 on the patches, adds 0 times a finite texel:
+ * the images start zeroed). */
 static void disp_pass(const struct grid *g, const struct pattern_frame *f, float *restrict acc)
 {
     struct f4_image im = f->p->disp_f;   /* a local copy: vertex stores may not alias it */
@@ -540,7 +544,7 @@ static void disp_pass(const struct grid *g, const struct pattern_frame *f, float
     const float foot_zero = lambda_m / FILTER_NMIN * (1.0f + 1e-5f);
     for (int b = 0; b < g->npad; b += VBLK) {
         float wv[VBLK], fx[VBLK], fy[VBLK];
-        int off[VBLK], tile[VBLK], on = 0;
+        int off[VBLK], tile[VBLK];
         if (g->blk_foot[b / VBLK] >= foot_zero)
             continue;   /* w = 0 at the block's smallest footprint: so for all its vertices */
         for (int e = 0; e < VBLK; e++) {
@@ -550,10 +554,7 @@ static void disp_pass(const struct grid *g, const struct pattern_frame *f, float
             u = u > u_lo ? u : u_lo;
             u = u < u_hi ? u : u_hi;
             wv[e] = fade[b + e] * (u * u * (3.0f - 2.0f * u));
-            on += wv[e] > 0.0f;
         }
-        if (!on)
-            continue;   /* w = 0: waves shorter than Nmin cells are cancelled */
         if (g->acc_frame[b / VBLK] != frame) {
             /* the block's first displacement this frame */
             for (int e = 0; e < 4 * VBLK; e++)
@@ -899,7 +900,8 @@ static void row_distances(struct grid *g)
  * the moments are 0 (foam opacity 0) without CPU patterns, else the foam slot's clear fraction
  * becomes the opacity. */
 static inline void write_block(float *restrict vx, int n, const float *restrict rx,
-                               const float *restrict ry, const float *restrict d, float z, int cpu)
+                               const float *restrict ry, const float *restrict d, float z,
+                               const int cpu)
 {
     for (int e = 0; e < n; e++, vx += GRID_FLOATS, d += 4) {
         vx[GRID_A_POS + 0] = rx[e] + d[0];
@@ -913,6 +915,23 @@ static inline void write_block(float *restrict vx, int n, const float *restrict 
             for (int c = GRID_A_SLOPE; c <= GRID_A_FOAM; c++)
                 vx[c] = 0.0f;
         }
+    }
+}
+
+/* write_block with n and cpu constant where it is inlined (unrolled, no test per vertex) */
+static void write_vertices(const struct grid *g, float *verts, float z, int cpu)
+{
+    static const float none[4 * VBLK];
+    for (int b = 0; b < g->nverts; b += VBLK) {
+        /* blocks no pass displaced this frame add zeros */
+        const float *d = g->acc_frame[b / VBLK] == g->frame ? g->acc + 4 * (size_t)b : none;
+        float *vx = verts + (size_t)b * GRID_FLOATS;
+        if (b + VBLK > g->nverts)
+            write_block(vx, g->nverts - b, g->rx + b, g->ry + b, d, z, cpu);
+        else if (cpu)
+            write_block(vx, VBLK, g->rx + b, g->ry + b, d, z, 1);
+        else
+            write_block(vx, VBLK, g->rx + b, g->ry + b, d, z, 0);
     }
 }
 
@@ -986,18 +1005,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             if (pf[i].p->cpu)
                 moment_pass(g, &pf[i], verts);
     }
-    static const float none[4 * VBLK];
-    const float z = (float)-(cam->pos[2] > 0.5 ? cam->pos[2] : 0.5);
-    const float *rx = g->rx, *ry = g->ry;
-    for (int b = 0; b < g->nverts; b += VBLK) {
-        /* blocks no pass displaced this frame add zeros */
-        const float *d = g->acc_frame[b / VBLK] == g->frame ? g->acc + 4 * (size_t)b : none;
-        float *vx = verts + (size_t)b * GRID_FLOATS;
-        if (b + VBLK <= g->nverts)
-            write_block(vx, VBLK, rx + b, ry + b, d, z, cpu);
-        else
-            write_block(vx, g->nverts - b, rx + b, ry + b, d, z, cpu);
-    }
+    write_vertices(g, verts, (float)-(cam->pos[2] > 0.5 ? cam->pos[2] : 0.5), cpu);
     row_distances(g);
     return n;
 }
