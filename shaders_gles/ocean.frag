@@ -1,9 +1,14 @@
 // ocean.frag - sea shading (Bruneton 2010 §4-5, Hu 2006 §5, Dupuy 2012 eq. 6-8).
-// validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0 | FS_PATTERNS=2 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=0
+// validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0 | FS_PATTERNS=2 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 |
+// validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
 // FS_WHITECAPS <= FS_PATTERNS: leading slots whose patterns carry whitecaps (bake.c).
+// SWELL_RUN_LOD (software rasterisers with fragment texture LOD, gpu.c): the pattern tables are
+// fetched at one whole mip level per draw, the one nearest the LOD the hardware would pick at
+// the run's rows (renderer.c draw_runs); the Fresnel texture, a smooth function of the bumped
+// view, and in low quality the sky map, at level 0. Elsewhere the per-pixel implicit LOD.
 //
 // Per pixel only what depends on the pixel's own slope moments is evaluated: ocean.vert
 // linearises the rest about the vertex's mean slope s0 (see there), so the pixel adds the
@@ -39,6 +44,19 @@ uniform vec3 sun_display;           // low: display-space colour of Hu's Phong h
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
 varying vec4 v_lin_dx;              // ...and their derivatives in s.x
 varying vec4 v_lin_dy;              // ...and in s.y
+#if defined(SWELL_RUN_LOD) && defined(SWELL_HAS_TEXTURE_LOD)
+uniform vec4 slope_lod;             // per fragment pattern slot, this draw's mip level
+#define FETCH_SLOPE(i, tex, uv) texture2DLodEXT(tex, uv, slope_lod[i])
+#ifdef QUALITY_HIGH
+uniform vec4 wc_lod;
+#define FETCH_WC(i, tex, uv) texture2DLodEXT(tex, uv, wc_lod[i])
+#endif
+#define FETCH_LEVEL0(tex, uv) texture2DLodEXT(tex, uv, 0.0)
+#else
+#define FETCH_SLOPE(i, tex, uv) texture2D(tex, uv)
+#define FETCH_WC(i, tex, uv) texture2D(tex, uv)
+#define FETCH_LEVEL0(tex, uv) texture2D(tex, uv)
+#endif
 #if FS_PATTERNS > 0
 uniform sampler2D slope_tex0;
 varying vec2 v_uv0;
@@ -94,11 +112,11 @@ void add_whitecap(vec4 k)
     g_kvar += max(k.y - k.x * k.x, 0.0);
     g_clear *= 1.0 - clamp(k.z, 0.0, 1.0);
 }
-#define SLOPE(i, tex, uv) add_slope(slope_bias[i] + slope_scale[i] * texture2D(tex, uv))
-#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i] + wc_scale[i] * texture2D(tex, uv))
+#define SLOPE(i, tex, uv) add_slope(slope_bias[i] + slope_scale[i] * FETCH_SLOPE(i, tex, uv))
+#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i] + wc_scale[i] * FETCH_WC(i, tex, uv))
 #else
 // The single pass needs the mean slope only; ds_offset holds the fetched slots' biases.
-#define SLOPE(i, tex, uv) g_ds += slope_scale[i].xy * texture2D(tex, uv).xy
+#define SLOPE(i, tex, uv) g_ds += slope_scale[i].xy * FETCH_SLOPE(i, tex, uv).xy
 #endif
 
 void main()
@@ -119,7 +137,7 @@ void main()
 #endif
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.
     vec4 uv = v_lin + v_lin_dx * g_ds.x + v_lin_dy * g_ds.y;
-    vec4 ftex = texture2D(fresnel_tex, uv.xy);
+    vec4 ftex = FETCH_LEVEL0(fresnel_tex, uv.xy);
 #ifdef QUALITY_HIGH
     // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below; 1e-4 is
     // also the smallest value whose products stay normal in fp16.
@@ -180,7 +198,7 @@ void main()
 #else
     // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal, the
     // Phong sun of Hu §5.3 (R: evaluated per texel of the bumped view vector for this sun).
-    vec3 sky = texture2D(sky_tex, uv.zw).rgb;
+    vec3 sky = FETCH_LEVEL0(sky_tex, uv.zw).rgb;
     gl_FragColor = vec4(mix(sea_display, sky, ftex.a) + ftex.r * sun_display, 1.0);
 #endif
 }

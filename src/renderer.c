@@ -33,7 +33,7 @@ enum ocean_uniform {
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
     OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
-    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_COUNT
+    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SLOPE_LOD, OU_WC_LOD, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -41,7 +41,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
     "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
-    "wc_tex1", "wc_tex2", "wc_tex3"
+    "wc_tex1", "wc_tex2", "wc_tex3", "slope_lod", "wc_lod"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -135,6 +135,7 @@ struct renderer {
     float exposure;
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
+    int run_lod;                      /* pattern fetches at one LOD per run (gpu.c) */
     int draws;                        /* sea draws in the last frame */
     int draws_wc_const;               /* ...with whitecaps of a fetched slot as constants */
 };
@@ -552,8 +553,9 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = A_COUNT;
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s", k, kw,
-                             r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "");
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s", k,
+                             kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
+                             r->run_lod ? " SWELL_RUN_LOD" : "");
             int v = VARIANT(k, kw);
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",
@@ -680,6 +682,7 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     r->t = desc->tables;
     assign_patterns(r);
     r->vtf = choose_vtf(r);
+    r->run_lod = r->gpu->caps.prefer_run_lod && !r->d.pixel_lod;
     gd.tables = r->t;
     gd.kind = r->d.geometry;
     gd.w = r->d.grid_w;
@@ -932,17 +935,83 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
  * patch is still larger than drop x the pixel footprint there. On a plane seen from altitude a
  * at distance d the footprint along the view (the larger axis, which sets the LOD) is
  * d^2 / a times the pixel's angle. Slots are largest first, so the answer is a count. */
+static float row_footprint(float d2, float alt, float pix_angle)
+{
+    return (d2 + alt * alt) / alt * pix_angle;
+}
+
 static int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle,
                         float drop)
 {
-    float foot = (d2 + alt * alt) / alt * pix_angle;
+    float foot = row_footprint(d2, alt, pix_angle);
     int k = 0;
     while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * drop > foot)
         k++;
     return k;
 }
 
-/* The sea, far rows first, one draw per run of rows fetching the same slots. */
+/* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
+ * hardware would take at the row, so a run is a span of rows where no table's level changes.
+ * Whole levels, because llvmpipe fetches one level where the LOD has no fraction and two (the
+ * trilinear blend) otherwise: measured at 1 km, gles3, whole levels made the frame 10 % faster
+ * than fractional ones, which were no faster than per-pixel LOD (sampling at one level and
+ * choosing it per run is GL_LINEAR_MIPMAP_NEAREST made coarser: up to half a level too sharp
+ * or too blurred, and a visible step only where patterns are still resolved).
+ * Along a row of the projected grid the footprint grows from the centre of the screen (where
+ * grid_row_span's distance is taken) to its edges: at 16:9 and 45 degrees vertical field of
+ * view the edge is 1.24x farther, 1.55x the footprint (0.63 levels). The LOD is taken at 1.25x
+ * the centre's footprint, a third of a level up, between the two. */
+#define RUN_LOD_ROW_MEAN 1.25f
+#define RUN_LOD_MAX 15              /* 4 bits per table in the run key */
+
+/* log2 of texels per metre of slot s's slope (wc = 0) or whitecap (wc = 1) table. */
+static float slot_log2_density(const struct renderer *r, int s, int wc)
+{
+    const struct fs_slot *sl = &r->slot[s];
+    const struct swell_table *t = wc ? sl->wc : sl->slope;
+    int texels = t->width > t->height ? t->width : t->height;
+    return log2f((float)texels / r->t->pattern[sl->pattern].size_m);
+}
+
+static int nearest_level(float log2_foot, float log2_density)
+{
+    float lod = floorf(log2_foot + log2_density + 0.5f);
+    return lod <= 0.0f ? 0 : lod >= (float)RUN_LOD_MAX ? RUN_LOD_MAX : (int)lod;
+}
+
+/* The run key of a row at footprint foot (m per pixel) fetching k slopes and kw whitecaps: the
+ * level of each fetched table, 4 bits each (slopes in the low 16 bits). 0 without run_lod. */
+static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
+{
+    uint32_t key = 0;
+    if (!r->run_lod)
+        return 0;
+    float lf = log2f(foot * RUN_LOD_ROW_MEAN);
+    for (int s = 0; s < k; s++) {
+        key |= (uint32_t)nearest_level(lf, slot_log2_density(r, s, 0)) << (4 * s);
+        if (s < kw)
+            key |= (uint32_t)nearest_level(lf, slot_log2_density(r, s, 1)) << (16 + 4 * s);
+    }
+    return key;
+}
+
+/* The LODs of a run from its key. */
+static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key)
+{
+    float sl[SWELL_MAX_PATTERNS] = { 0 }, wl[SWELL_MAX_PATTERNS] = { 0 };
+    if (!r->run_lod)
+        return;
+    for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
+        sl[s] = (float)((key >> (4 * s)) & 15u);
+        wl[s] = s < kw ? (float)((key >> (16 + 4 * s)) & 15u) : 0.0f;
+    }
+    const GLint *u = r->ou[VARIANT(k, kw)];
+    glUniform4fv(u[OU_SLOPE_LOD], 1, sl);
+    glUniform4fv(u[OU_WC_LOD], 1, wl);
+}
+
+/* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
+ * run_lod, at the same levels). */
 static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
                       int height)
 {
@@ -950,10 +1019,12 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
     float fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * (float)(M_PI / 180.0);
     float pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
     int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1, run_kw = -1;
+    uint32_t run_key = 0;
     int high = r->d.quality == QUALITY_HIGH;
     r->draws = r->draws_wc_const = 0;
     for (int row = 0; row <= rows; row++) {
         int first = 0, count = 0, k = -2, kw = -2;
+        uint32_t key = 0;
         float d2 = 0.0f;
         if (row < rows) {
             grid_row_span(r->grid, row, &first, &count, &d2);
@@ -966,14 +1037,16 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
                 kw = kw < r->nwc ? kw : r->nwc;
                 kw = kw < k ? kw : k;
             }
+            key = run_lod_key(r, row_footprint(d2, alt, pix), k, kw);
         }
-        if (k == run_k && kw == run_kw && first == run_first + run_count) {
+        if (k == run_k && kw == run_kw && key == run_key && first == run_first + run_count) {
             run_count += count;
             continue;
         }
         if (run_count > 0) {
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
             set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
+            set_run_lods(r, run_k, run_kw, run_key);
             glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;
@@ -983,6 +1056,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
         run_count = count;
         run_k = k;
         run_kw = kw;
+        run_key = key;
     }
 }
 
@@ -1057,6 +1131,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     out->triangles = grid_index_count(r->grid) / 3;
     out->sea_draws = r->draws;
     out->sea_draws_wc_const = r->draws_wc_const;
+    out->run_lod = r->run_lod;
     out->vtf = r->vtf;
 }
 
@@ -1068,7 +1143,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x)\n"
         "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
         "fetches: per run of rows only the patterns not fully filtered there; whitecaps of %d "
-        "pattern(s)\n"
+        "pattern(s); %s\n"
         "fragment precision: %s\n"
         "sky map: %s\n"
         "shading: %s\n",
@@ -1079,6 +1154,8 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                : "CPU-displaced (no vertex texture fetch), streamed per frame",
         grid_vertex_count(r->grid), r->nfs,
         r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes, r->nwc,
+        r->run_lod ? "one LOD per run (software rasteriser: per-pixel LOD is its slow path)"
+                   : "per-pixel LOD",
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",

@@ -30,6 +30,9 @@ struct renderer_desc {
                                          * vertex texture fetch (tests compare the two) */
     int fetch_all;                      /* 1: every row fetches every pattern (tests compare
                                          * with the runs that drop fully filtered ones) */
+    int pixel_lod;                      /* 1: per-pixel texture LOD even where the device
+                                         * prefers one LOD per run (gpu.c prefer_run_lod;
+                                         * tests compare the two) */
 };
 
 struct renderer_stats {
@@ -39,6 +42,7 @@ struct renderer_stats {
     int sea_draws;                      /* runs of rows drawn in the last frame (renderer.c) */
     int sea_draws_wc_const;             /* ...of them, runs where a fetched slot's whitecaps
                                          * entered as its patch's constants */
+    int run_lod;                        /* pattern tables fetched at one LOD per run */
     int vtf;                            /* grid built and displaced in the vertex shader */
 };
 

@@ -281,7 +281,7 @@ static int emit_header(struct assembly *a, const struct shader_desc *d, GLenum s
     int es3 = shader_is_es3(c);
     if (es3) {
         sb_printf(b, "#version 300 es\n#define texture2D texture\n#define texture2DLod textureLod\n"
-                     "#define texture2DGradEXT textureGrad\n");
+                     "#define texture2DGradEXT textureGrad\n#define texture2DLodEXT textureLod\n");
         if (fragment)
             sb_printf(b, "#define varying in\nout highp vec4 swell_frag_colour;\n"
                          "#define gl_FragColor swell_frag_colour\n");

@@ -65,6 +65,7 @@ header() {
         echo "#define texture2D texture"
         echo "#define texture2DLod textureLod"
         echo "#define texture2DGradEXT textureGrad"
+        echo "#define texture2DLodEXT textureLod"
         if [ "$stage" = frag ]; then
             echo "#define varying in"
             echo "out highp vec4 swell_frag_colour;"
