@@ -116,7 +116,9 @@ vec4 lookups(vec3 v, vec2 s)
     vec3 n = facing_normal(v, s);
     vec2 fv = v.xy - n.xy;
     float rho = length(fv);
-    fv *= asin(min(rho, 1.0)) / (0.5 * PI * max(rho, 1e-6));
+    // fresnel.h: radius r = 1 - sqrt(1 - theta / (pi / 2)), theta = asin(rho)
+    float r = 1.0 - sqrt(max(1.0 - asin(min(rho, 1.0)) / (0.5 * PI), 0.0));
+    fv *= r / max(rho, 1e-6);
     return vec4(vec2(0.5) + 0.5 * fv, sky_map_uv(reflect(-v, n)));
 }
 

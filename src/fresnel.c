@@ -162,10 +162,10 @@ int fresnel_hu_table(int size, struct swell_table *t, struct swell_err *err)
     for (int j = 0; j < size; j++)
         for (int i = 0; i < size; i++) {
             /* Texel centre p in [-1, 1]^2 -> the bumped view vector at polar angle
-             * theta = |p| pi / 2 (clamped to the horizon) in the direction of p. */
+             * theta = (pi / 2) r (2 - r), r = min(|p|, 1), in the direction of p (fresnel.h). */
             double px = (2.0 * i + 1.0) / size - 1.0, py = (2.0 * j + 1.0) / size - 1.0;
-            double rho = sqrt(px * px + py * py);
-            double theta = 0.5 * M_PI * (rho < 1.0 ? rho : 1.0), st = sin(theta);
+            double rho = sqrt(px * px + py * py), rc = rho < 1.0 ? rho : 1.0;
+            double theta = 0.5 * M_PI * rc * (2.0 - rc), st = sin(theta);
             double vx = rho > 0.0 ? st * px / rho : 0.0, vy = rho > 0.0 ? st * py / rho : 0.0;
             double vz = rho < 1.0 ? cos(theta) : 0.0;
             uint8_t *p = t->data + ((size_t)j * (size_t)size + (size_t)i) * 4;

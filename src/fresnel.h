@@ -36,16 +36,21 @@ double fresnel_effective_fit(double cos_v, double sigma2);
 /* Hu §5.1 Fresnel texture, name "fresnel", size x size RGBA8 (size a power of two in
  * [2, 1024]), 1 layer, 1 level. Index: the unit view vector V = (vx, vy, vz) towards the eye
  * in a frame whose z axis is the (unbumped) surface normal (Hu: the view vector bumped by
- * (-du, -dv)), at polar angle theta = acos(vz), in Hu's (vx, vy) direction but at a radius
- * proportional to theta (an azimuthal equidistant map of the hemisphere):
- *     (s, t) = 0.5 + 0.5 p,  p = (vx, vy) / |(vx, vy)| theta / (pi / 2)
+ * (-du, -dv)), at polar angle theta = acos(vz), in Hu's (vx, vy) direction at a radius that
+ * grows fastest towards grazing, where F does:
+ *     (s, t) = 0.5 + 0.5 p,  p = (vx, vy) / |(vx, vy)| r,  r = 1 - sqrt(1 - theta / (pi / 2))
  * so texel (i, j) (row j counted from the first row in memory, GL's t = 0) holds, with
- * p = ((2 i + 1) / size - 1, (2 j + 1) / size - 1) and theta = min(|p|, 1) pi / 2,
+ * p = ((2 i + 1) / size - 1, (2 j + 1) / size - 1), r = min(|p|, 1) and
+ * theta = (pi / 2) r (2 - r),
  *     (vx, vy) = sin(theta) p / |p|,  vz = cos(theta);
  * outside the unit disc theta stays pi / 2 (grazing), a continuous extension for bumped
- * look-ups that leave it. Hu's map (s, t) = 0.5 + 0.5 (vx, vy) squeezes the grazing angles,
- * where F rises from 0.2 to 1, into the disc's outermost texel: bilinear filtering of that
- * ring depends on the azimuth, and the horizon showed it as vertical streaks.
+ * look-ups that leave it. Why this radius: F rises from 0.2 to 1 between 80 and 90 degrees.
+ * Hu's map (s, t) = 0.5 + 0.5 (vx, vy) squeezed all of that into the outermost texel ring, and
+ * even a radius proportional to theta (manifest version 2) left the rise from 0.5 to 1 in the
+ * last two texels, straddling the disc's edge: bilinear filtering there depends on how the
+ * circle crosses the texel grid, i.e. on the azimuth, and the horizon showed it as bright
+ * blobs (vertical streaks before that). Here the last 2 degrees span 15 % of the radius
+ * (5 texels of 32 at size 64); normal incidence, where F is flat, gets half the resolution.
  * RGB = V, scale 2 bias -1 (value = 2 byte/255 - 1); A = fresnel_exact(vz, SWELL_WATER_IOR),
  * scale 1 bias 0. Sample with LINEAR filtering and CLAMP_TO_EDGE. */
 int fresnel_hu_table(int size, struct swell_table *t, struct swell_err *err);

@@ -84,7 +84,7 @@ def edit(key, value):
 out('fuzz_manifest', 'bad_empty', b'')
 out('fuzz_manifest', 'bad_no_final_newline', ma[:-1])
 out('fuzz_manifest', 'bad_magic', b'swell-manifext' + ma[14:])
-out('fuzz_manifest', 'bad_version_1', ma.replace(b'swell-manifest 2', b'swell-manifest 1', 1))
+out('fuzz_manifest', 'bad_version_2', ma.replace(b'swell-manifest 3', b'swell-manifest 2', 1))
 out('fuzz_manifest', 'bad_truncated_half', ma[:len(ma) // 2].rsplit(b'\n', 1)[0] + b'\n')
 out('fuzz_manifest', 'bad_count_33', edit(b'set.count', b'33'))
 out('fuzz_manifest', 'bad_count_negative', edit(b'set.count', b'-1'))

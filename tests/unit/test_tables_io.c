@@ -191,7 +191,7 @@ static void test_roundtrip(void **st)
     }
     uint8_t *m = NULL;
     slurp("rt", "manifest.swell", &m);
-    assert_memory_equal(m, "swell-manifest 2\n", 17);
+    assert_memory_equal(m, "swell-manifest 3\n", 17);
     free(m);
     tables_destroy(&a);
     tables_destroy(&b);
@@ -290,7 +290,7 @@ static void test_leftover_temp_files(void **st)
     make_set(&a);
     save(&a, "temp");
     spit("temp", "slope_p0.ktx" FS_TEMP_MARKER "Ab12Cd", "partial", 7);
-    spit("temp", "manifest.swell" FS_TEMP_MARKER "Zz99Yy", "swell-manifest 2\nset.co", 22);
+    spit("temp", "manifest.swell" FS_TEMP_MARKER "Zz99Yy", "swell-manifest 3\nset.co", 22);
     char d[4096], p[4096];
     dir_path(d, "temp");
     if (tables_load_dir(d, &b, &e) != 0)
