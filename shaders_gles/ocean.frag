@@ -28,6 +28,7 @@ uniform vec4 slope_bias[4];
 #ifdef QUALITY_HIGH
 uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
+uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
@@ -168,8 +169,15 @@ void main()
     gy *= max(1.0, f * inversesqrt(max(dot(gy, gy), 1e-8)));
     vec3 sky = texture2DGradEXT(sky_tex, uv.zw, gx, gy).rgb * sky_map_scale;
 #else
-    // gles2-min: no gradients; a LOD bias equal to the footprint on top of the pixel's LOD.
-    vec3 sky = texture2D(sky_tex, uv.zw, max(foot, 0.0)).rgb * sky_map_scale;
+    // gles2-min: no gradients, no explicit LOD, only a bias on the pixel's own LOD. Eq. 27
+    // wants the larger of that LOD and the filter's footprint (as the gradient path takes);
+    // a bias of the whole footprint gave their sum, which blurred the sky to grey where the
+    // pixel's own LOD was high, left pixels of small variance sharp and bright (sparkles), and
+    // drew a sawtooth along the horizon's grid row, where the own LOD differs per triangle.
+    // So a first fetch reads the own LOD (the map's A holds each level's index, sky.h), and
+    // the second biases by what the footprint asks beyond it: LOD = max(own, footprint).
+    float own = texture2D(sky_tex, uv.zw).a * sky_level_scale;
+    vec3 sky = texture2D(sky_tex, uv.zw, max(foot - own, 0.0)).rgb * sky_map_scale;
 #endif
 
     // Refracted light, eq. 28.

@@ -136,7 +136,7 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
                     dst[4 * ((size_t)j * m + i) + c] = (uint8_t)(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f + 0.5f);
                     hdst[4 * ((size_t)j * m + i) + c] = quantize_half_from_float(rad);
                 }
-                dst[4 * ((size_t)j * m + i) + 3] = 255;
+                dst[4 * ((size_t)j * m + i) + 3] = (uint8_t)(SKY_LEVEL_ALPHA * (l < 9 ? l : 9));
                 hdst[4 * ((size_t)j * m + i) + 3] = quantize_half_from_float(1.0f);
             }
         if (m > 1)

@@ -16,13 +16,18 @@
 #include <stdint.h>
 #include "err.h"
 
+/* A of level l of the RGBA8 sky map (up to 9 levels, 256^2) */
+#define SKY_LEVEL_ALPHA 28
+
 struct sky {
     float sun_dir[3];       /* unit vector towards the sun, world */
     float sun_irr[3];       /* sun irradiance at the sea (normal incidence), relative to E0 */
     float sky_irr[3];       /* sky irradiance on a horizontal surface, relative to E0 */
     float map_scale;        /* texel value v / 255 * map_scale = radiance, per channel */
     int size, levels;       /* sky map: size x size, full mip chain */
-    uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed */
+    uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed; A holds
+                             * the level l as SKY_LEVEL_ALPHA * l: a fetch's A / 255 x
+                             * (255 / SKY_LEVEL_ALPHA) is the LOD it sampled (ocean.frag) */
     uint16_t *half;         /* the same levels as IEEE half radiances (no scale): RGBA16F */
 };
 

@@ -412,7 +412,8 @@ static double rmse_rgb(const uint8_t *a, const uint8_t *b)
 }
 
 /* gles2-min (mediump, CPU geometry, eq. 27 by LOD bias) against the best tier the context
- * offers (there: vertex-shader geometry, textureGrad, highp on llvmpipe): RMSE below 6 of 255.
+ * offers (there: vertex-shader geometry, textureGrad, highp on llvmpipe): RMSE below 4.5 of
+ * 255 (measured 3.37; 5.55 when gles2-min's bias was the whole footprint, see ocean.frag).
  * Both with per-pixel LOD: this compares what the tiers can do; the level per run that
  * software rasterisers take on tiers with texture LOD is bounded apart (test_run_lod). */
 static void test_tiers(void **state)
@@ -433,7 +434,7 @@ static void test_tiers(void **state)
     g_pixel_lod = 0;
     double rmse = rmse_rgb(fx.img, fx.img2);
     print_message("gles2-min vs %s: RMSE %.2f / 255\n", gpu_tier_name(best), rmse);
-    assert_true(rmse < 6.0);
+    assert_true(rmse < 4.5);
 }
 
 /* Where the device prefers one mip level per run of rows (gpu.c prefer_run_lod: llvmpipe,

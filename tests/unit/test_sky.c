@@ -1,0 +1,46 @@
+/* test_sky.c - the RGBA8 sky map's A channel: each level's index, so a fetch on gles2-min
+ * reads the LOD it sampled (ocean.frag's own LOD, sky.h SKY_LEVEL_ALPHA). */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "sky.h"
+
+/* Every texel of level l holds A = SKY_LEVEL_ALPHA l, and A / 255 times the scale ocean.frag
+ * gets (255 / SKY_LEVEL_ALPHA) gives l back; a trilinear blend of levels l and l + 1 with
+ * weight f gives l + f (linear in A). The largest level index stays below 256. */
+static void test_level_alpha(void **state)
+{
+    struct sky s;
+    struct swell_err err;
+    (void)state;
+    assert_int_equal(sky_bake(30.0f, 10.0f, 256, &s, &err), 0);
+    assert_int_equal(s.levels, 9);
+    assert_true(SKY_LEVEL_ALPHA * (s.levels - 1) <= 255);
+    const float scale = 255.0f / (float)SKY_LEVEL_ALPHA;
+    for (int l = 0; l < s.levels; l++) {
+        int m = s.size >> l;
+        const uint8_t *q = s.data + sky_level_offset(&s, l);
+        for (int i = 0; i < m * m; i++)
+            assert_int_equal(q[4 * i + 3], SKY_LEVEL_ALPHA * l);
+        float decoded = q[3] / 255.0f * scale;
+        assert_true(fabsf(decoded - (float)l) < 1e-4f);
+        if (l + 1 < s.levels) {
+            const uint8_t *r = s.data + sky_level_offset(&s, l + 1);
+            float blend = (0.25f * q[3] + 0.75f * r[3]) / 255.0f * scale;
+            assert_true(fabsf(blend - ((float)l + 0.75f)) < 1e-4f);
+        }
+    }
+    sky_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_level_alpha),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
