@@ -16,12 +16,29 @@
 #define TILE_LOG2 4           /* lazily blended tiles of 16 x 16 texels */
 #define COORD_BIAS 1073741824.0  /* 2^30: a multiple of every table size; makes texel coords > 0 */
 #define VBLK 8                /* vertices per fixed-size block of the vectorised per-vertex passes */
+#define COORD_MAX 1073741824.0f  /* 2^30: float texel coordinates are clamped to +-COORD_MAX */
+
+/* A float4 texel as one vector, and the byte and integer vectors of the blend (GCC/Clang vector
+ * extensions: SSE2 or NEON registers, or plain lanes where the target has neither; no
+ * intrinsics); ld4 reads a float4 from any alignment. */
+typedef float f4 __attribute__((vector_size(16)));
+typedef uint8_t u8x16 __attribute__((vector_size(16)));
+typedef uint16_t u16x8 __attribute__((vector_size(16)));
+typedef int32_t i32x4 __attribute__((vector_size(16)));
+static inline f4 ld4(const float *p)
+{
+    f4 v;
+    memcpy(&v, p, sizeof(v));
+    return v;
+}
 
 /* A blended, dequantised level of a table as float4 texels, with its first column and row
  * repeated after its last so a bilinear footprint never wraps: texel (x, y) is at
- * data + 4 (y (w + 1) + x). It is blended lazily, by tiles of 16 x 16 texels (plus the
- * next column and row), the first time a sample needs one in the current phase: views near the
- * sea touch a few of the finest level's tiles. */
+ * data + 4 (y (w + 1) + x). A moment level is blended lazily, by tiles of 16 x 16 texels (plus
+ * the next column and row), the first time a sample needs one in the current phase: views near
+ * the sea touch a few of the finest level's tiles. A displacement image (at most 64 x 64 as
+ * baked) is blended whole when its phase moves and a vertex needs it: at the surface most of
+ * it is sampled, and a per-sample tile test cost more than the texels it spared. */
 struct f4_image {
     float *data;              /* (w + 1) (h + 1) texels */
     uint32_t *stamp;          /* per tile: the generation it was blended for */
@@ -48,15 +65,24 @@ struct grid_pattern {
     int cpu, levels;
 };
 
-/* One frame's constants of a pattern for the vertex loop: texel coordinates are
- * x = x0 + rest_x * kx (the uv offset and the half-texel shift folded in, in double). */
+/* One frame's constants of a CPU pattern for the moment pass: texel coordinates of moment level
+ * l are x = mx0[l] + rest_x mk[l] (the uv offset and the half-texel shift folded in, in double). */
 struct pattern_frame {
     struct grid_pattern *p;
-    double x0, y0, kx, ky;    /* displacement image */
-    double mx0[16], my0[16], mk[16];   /* moment level l: x = mx0[l] + rest_x mk[l] */
-    float lambda_m;
+    double mx0[16], my0[16], mk[16];
     float lev_k;              /* level-0 texels per metre of footprint: width / L_i */
-    int disp_on;              /* some vertex gives this pattern a non-zero eq. 2 weight */
+};
+
+/* One frame's constants of a pattern that displaces some vertex (eq. 2 weight > 0): texel
+ * coordinates of its displacement image x = x0 + rest_x kx, in float. */
+struct disp_frame {
+    const float *data;        /* the pattern's blended displacement image (f4_image) */
+    float x0, y0, kx, ky;
+    float lambda_m;           /* eq. 2's characteristic wavelength, m */
+    float foot_zero;          /* footprints from this one up give weight 0, m */
+    float coord_max;          /* COORD_MAX */
+    int wm, hm, wshift;
+    size_t stride;            /* floats per padded image row */
 };
 
 /* Per-vertex arrays are structures of arrays over npad = nverts rounded up to VBLK entries (plus
@@ -72,13 +98,14 @@ struct grid {
     uint16_t *idx;
     float *rx, *ry;           /* per-vertex rest position on the sea plane, m */
     float *foot;              /* per-vertex footprint (cell size on the sea plane), m */
-    float *acc;               /* per-vertex summed displacement (x, y, z, unused), m */
     float *fade;              /* per-vertex displacement factor (1 on the projected grid) */
     float *row_d2;            /* per projected grid row: smallest squared distance, m^2 */
-    uint32_t *acc_frame;      /* per block of VBLK vertices: the frame its acc was zeroed for */
+    float *acc;               /* per-vertex summed displacement (x, y, z, 0), m (displace) */
+    float *wv, *fx, *fy;      /* per vertex, one pattern's eq. 2 weight and bilinear fractions */
+    int *off;                 /* and its texel offset (disp_coords) */
     float *blk_foot;          /* per block of VBLK vertices: its smallest footprint this frame, m */
-    uint32_t frame;           /* grid_update's count, never 0 */
-    float unit[2];            /* 0 and 1, eq. 2's clamp (disp_pass says why a field) */
+    int *blk;                 /* first vertices of the blocks a pattern displaces */
+    float unit[2];            /* 0 and 1, eq. 2's clamp (displace says why a field) */
     double *col_sx;           /* per projected grid column (ws): NDC x of its rays */
     float *row_x, *row_y;     /* one projected grid row's rest positions (ws), m */
     float foot_lo, foot_hi;   /* smallest and largest footprint this frame */
@@ -203,6 +230,8 @@ static int pattern_images(struct grid_pattern *p, int i, struct swell_err *err)
 {
     size_t texels = 0, tiles = 0;
     dequant(p->disp, 0, p->disp_sc, p->disp_bi);
+    /* the displacement's fourth channel is unused: 0, so the summed float4 is (x, y, z, 0) */
+    p->disp_sc[3] = p->disp_bi[3] = 0.0f;
     dequant(p->slope, 1, p->slope_sc, p->slope_bi);
     dequant(p->wc, 1, p->wc_sc, p->wc_bi);
     for (int pass = 0; pass < 2; pass++) {
@@ -255,14 +284,18 @@ void grid_destroy(struct grid *g)
         free(g->p[i].stamp_mem);
     }
     free(g->row_foot);
+    free(g->acc);
+    free(g->wv);
+    free(g->fx);
+    free(g->fy);
+    free(g->off);
+    free(g->blk_foot);
+    free(g->blk);
     free(g->fade);
     free(g->foot);
-    free(g->acc);
     free(g->rx);
     free(g->ry);
     free(g->row_d2);
-    free(g->acc_frame);
-    free(g->blk_foot);
     free(g->col_sx);
     free(g->row_x);
     free(g->row_y);
@@ -299,20 +332,25 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     {
         size_t n = (size_t)g->npad + (size_t)g->w + VBLK;
         g->row_foot = calloc((size_t)g->rows, sizeof(float));
+        g->acc = calloc(4 * (size_t)g->npad, sizeof(float));
+        g->wv = calloc((size_t)g->npad, sizeof(float));
+        g->fx = calloc((size_t)g->npad, sizeof(float));
+        g->fy = calloc((size_t)g->npad, sizeof(float));
+        g->off = calloc((size_t)g->npad, sizeof(int));
+        g->blk_foot = calloc((size_t)g->npad / VBLK, sizeof(float));
+        g->blk = calloc((size_t)g->npad / VBLK, sizeof(int));
         g->foot = calloc(n, sizeof(float));
         g->fade = calloc(n, sizeof(float));
-        g->acc = calloc(4 * n, sizeof(float));
         g->rx = calloc(n, sizeof(float));
         g->ry = calloc(n, sizeof(float));
         g->row_d2 = calloc((size_t)g->h, sizeof(float));
-        g->acc_frame = calloc((size_t)g->npad / VBLK, sizeof(uint32_t));
-        g->blk_foot = calloc((size_t)g->npad / VBLK, sizeof(float));
         g->col_sx = calloc((size_t)g->ws, sizeof(double));
         g->row_x = calloc((size_t)g->ws, sizeof(float));
         g->row_y = calloc((size_t)g->ws, sizeof(float));
     }
-    if (!g->foot || !g->fade || !g->row_foot || !g->acc || !g->rx || !g->ry || !g->row_d2 ||
-        !g->acc_frame || !g->blk_foot || !g->col_sx || !g->row_x || !g->row_y) {
+    if (!g->foot || !g->fade || !g->row_foot || !g->rx || !g->ry || !g->row_d2 ||
+        !g->col_sx || !g->row_x || !g->row_y || !g->acc || !g->wv || !g->fx || !g->fy ||
+        !g->off || !g->blk_foot || !g->blk) {
         rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for %d vertices", g->nverts);
         goto fail;
     }
@@ -367,37 +405,58 @@ fail:
     return rc;
 }
 
+/* Byte and 16-bit lanes widened by interleaving with zeros (punpckl/h on SSE2, zip on NEON):
+ * the zero goes in the high half of each wider lane, whose place depends on the byte order. */
+#if __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#define ZIP8_LO(v, z) __builtin_shufflevector(z, v, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23)
+#define ZIP8_HI(v, z) __builtin_shufflevector(z, v, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31)
+#define ZIP16_LO(v, z) __builtin_shufflevector(z, v, 0, 8, 1, 9, 2, 10, 3, 11)
+#define ZIP16_HI(v, z) __builtin_shufflevector(z, v, 4, 12, 5, 13, 6, 14, 7, 15)
+#else
+#define ZIP8_LO(v, z) __builtin_shufflevector(v, z, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23)
+#define ZIP8_HI(v, z) __builtin_shufflevector(v, z, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31)
+#define ZIP16_LO(v, z) __builtin_shufflevector(v, z, 0, 8, 1, 9, 2, 10, 3, 11)
+#define ZIP16_HI(v, z) __builtin_shufflevector(v, z, 4, 12, 5, 13, 6, 14, 7, 15)
+#endif
+
 /* 4 RGBA8 texels of loop frames f0 (a) and f1 (b) blended in 16 bits (a w0 + b w1 + rnd <=
- * 255 * 256 + 128), shifted and dequantised to floats. Fixed blocks of restrict-qualified data
- * are what -O2's very-cheap vectoriser accepts (SSE2, NEON; no intrinsics); rnd and shift are
+ * 255 * 256 + 128), shifted and dequantised to floats (sc, bi: one texel's four channels), in
+ * vectors: -O2's vectoriser left the 16-bit array of a plain loop on the stack. rnd and shift are
  * constants where it is inlined (a variable shift costs twice the instructions). */
 static inline void blend_block(float *restrict out, const uint8_t *restrict a,
-                               const uint8_t *restrict b, const float *restrict sc,
-                               const float *restrict bi, uint16_t w0, uint16_t w1,
-                               const uint16_t rnd, const int shift)
+                               const uint8_t *restrict b, f4 sc, f4 bi, uint16_t w0,
+                               uint16_t w1, const uint16_t rnd, const int shift)
 {
-    uint16_t v[BLEND_BLOCK];
-    for (int k = 0; k < BLEND_BLOCK; k++)
-        v[k] = (uint16_t)((uint16_t)(a[k] * w0 + b[k] * w1 + rnd) >> shift);
-    for (int k = 0; k < BLEND_BLOCK; k++)
-        out[k] = bi[k] + sc[k] * v[k];
+    const u8x16 z = { 0 };
+    const u16x8 zw = { 0 };
+    u8x16 va, vb;
+    memcpy(&va, a, sizeof(va));
+    memcpy(&vb, b, sizeof(vb));
+    u16x8 lo = (u16x8)ZIP8_LO(va, z) * w0 + (u16x8)ZIP8_LO(vb, z) * w1;
+    u16x8 hi = (u16x8)ZIP8_HI(va, z) * w0 + (u16x8)ZIP8_HI(vb, z) * w1;
+    lo = (u16x8)(lo + rnd) >> shift;
+    hi = (u16x8)(hi + rnd) >> shift;
+    f4 t[4] = { bi + sc * __builtin_convertvector((i32x4)ZIP16_LO(lo, zw), f4),
+                bi + sc * __builtin_convertvector((i32x4)ZIP16_HI(lo, zw), f4),
+                bi + sc * __builtin_convertvector((i32x4)ZIP16_LO(hi, zw), f4),
+                bi + sc * __builtin_convertvector((i32x4)ZIP16_HI(hi, zw), f4) };
+    memcpy(out, t, sizeof(t));
 }
 
 /* One row of a tile: n bytes (a multiple of BLEND_BLOCK) from ra / rb, then the texel after
  * them from ea / eb (the next column, or column 0 where the row wraps). */
 static inline void blend_row(float *restrict o, const uint8_t *restrict ra,
                              const uint8_t *restrict rb, const uint8_t *restrict ea,
-                             const uint8_t *restrict eb, size_t n, const float *restrict sc,
-                             const float *restrict bi, uint16_t w0, uint16_t w1,
-                             const uint16_t rnd, const int shift)
+                             const uint8_t *restrict eb, size_t n, f4 sc, f4 bi, uint16_t w0,
+                             uint16_t w1, const uint16_t rnd, const int shift)
 {
-    uint16_t v[4];
+    f4 v;
     for (size_t k = 0; k < n; k += BLEND_BLOCK)
         blend_block(o + k, ra + k, rb + k, sc, bi, w0, w1, rnd, shift);
     for (int c = 0; c < 4; c++)
-        v[c] = (uint16_t)((uint16_t)(ea[c] * w0 + eb[c] * w1 + rnd) >> shift);
-    for (int c = 0; c < 4; c++)
-        o[n + c] = bi[c] + sc[c] * v[c];
+        v[c] = (float)((uint16_t)(ea[c] * w0 + eb[c] * w1 + rnd) >> shift);
+    v = bi + sc * v;
+    memcpy(o + n, &v, sizeof(v));
 }
 
 /* Blend tile (tx, ty) of im for its phase: texels [x0, x0 + TILE] x [y0, y0 + TILE] clipped to
@@ -416,11 +475,7 @@ static void blend_tile(struct f4_image *im, int tx, int ty)
     size_t last = 4 * (size_t)(x1 & (im->w - 1));   /* source of the column after the span */
     const uint8_t *a = im->t->data + table_offset(t, im->level, f0);
     const uint8_t *b = im->t->data + table_offset(t, im->level, f1);
-    float sc[BLEND_BLOCK], bi[BLEND_BLOCK];
-    for (int k = 0; k < BLEND_BLOCK; k++) {
-        sc[k] = im->sc[k & 3];
-        bi[k] = im->bi[k & 3];
-    }
+    const f4 sc = ld4(im->sc), bi = ld4(im->bi);
     if (span % BLEND_BLOCK) {
         /* images narrower than a block: one texel at a time */
         for (int y = y0; y <= y1; y++) {
@@ -444,6 +499,38 @@ static void blend_tile(struct f4_image *im, int tx, int ty)
         }
     }
     im->stamp[ty * im->tiles_x + tx] = im->gen;
+}
+
+/* Blend every stale tile of im: for images at least a block wide, row by row (each row's next
+ * column is its column 0, the row after the last is row 0), the same values blend_tile gives. */
+static void blend_image(struct f4_image *im)
+{
+    const struct swell_table *t = im->t;
+    const struct stream_phase *ph = &im->ph;
+    int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0;
+    uint16_t w1 = (uint16_t)ph->w, w0 = (uint16_t)(STREAM_W_ONE - w1);
+    size_t row = 4 * (size_t)im->w, stride = 4 * (size_t)(im->w + 1);
+    const uint8_t *a = t->data + table_offset(t, im->level, f0);
+    const uint8_t *b = t->data + table_offset(t, im->level, f1);
+    const f4 sc = ld4(im->sc), bi = ld4(im->bi);
+    int ntiles = im->tiles_x * tiles_of(im->h);
+    if (row % BLEND_BLOCK) {
+        for (int k = 0; k < ntiles; k++)
+            if (im->stamp[k] != im->gen)
+                blend_tile(im, k % im->tiles_x, k / im->tiles_x);
+        return;
+    }
+    for (int y = 0; y <= im->h; y++) {
+        const uint8_t *ra = a + (size_t)(y & (im->h - 1)) * row;
+        const uint8_t *rb = b + (size_t)(y & (im->h - 1)) * row;
+        float *o = im->data + (size_t)y * stride;
+        if (im->shift)
+            blend_row(o, ra, rb, ra, rb, row, sc, bi, w0, w1, STREAM_W_ONE / 2, 8);
+        else
+            blend_row(o, ra, rb, ra, rb, row, sc, bi, w0, w1, 0, 0);
+    }
+    for (int k = 0; k < ntiles; k++)
+        im->stamp[k] = im->gen;
 }
 
 /* Start a new generation of im when the pattern's phase has moved: every tile is stale. */
@@ -519,72 +606,181 @@ static void block_foot(int n, const float *restrict foot, float *restrict out)
     }
 }
 
-/* Add pattern f's displacement, weighted by Bruneton eq. 2 for each vertex's cell of size foot,
- * to acc (float4 per vertex). By blocks of VBLK vertices: for blocks whose smallest footprint
- * gives a weight > 0, the weights, texel coordinates (in double, as sample_f4x2 does) and
- * offsets in fixed-size loops the compiler vectorises; then one bilinear float4 fetch per vertex
- * of the block (a vertex of weight 0, or of fade 0 on the patches, adds 0 times a finite texel:
- * the images start zeroed). */
-static void disp_pass(const struct grid *g, const struct pattern_frame *f, float *restrict acc)
+/* For the nb blocks of VBLK vertices starting at blk[]: the weights of Bruneton eq. 2 for each
+ * vertex's cell of size foot (times the fade), the texel coordinates x = x0 + rest_x kx in float,
+ * floored (rest positions are camera-relative floats and x0 a wrapped offset: float keeps what
+ * the inputs hold), and the offsets and tiles of the bilinear footprints. Fixed-size inner loops
+ * over restrict-qualified arrays are what -O2's very-cheap vectoriser accepts. */
+static void disp_coords(const struct disp_frame *f, int nb, const int *restrict blk,
+                        const float *restrict rx, const float *restrict ry,
+                        const float *restrict foot, const float *restrict fade, float u_lo,
+                        float u_hi, float *restrict wv, float *restrict fx, float *restrict fy,
+                        int *restrict off)
 {
-    struct f4_image im = f->p->disp_f;   /* a local copy: vertex stores may not alias it */
-    const float lambda_m = f->lambda_m;
-    const double x0 = f->x0 + COORD_BIAS, y0 = f->y0 + COORD_BIAS, kx = f->kx, ky = f->ky;
-    const int wm = im.w - 1, hm = im.h - 1;
-    const int wshift = __builtin_ctz((unsigned)im.w), tshift = __builtin_ctz((unsigned)im.tiles_x);
-    const size_t stride = 4 * ((size_t)im.w + 1);
-    const float *restrict rx = g->rx, *restrict ry = g->ry;
-    const float *restrict foot = g->foot, *restrict fade = g->fade;
-    /* eq. 2's clamp bounds loaded, not constants: with constants GCC threads the clamp's
-     * branches (w is 0 or 1 there) and can then no longer vectorise the loop */
-    const float u_lo = g->unit[0], u_hi = g->unit[1];
-    const uint32_t frame = g->frame;
-    /* eq. 2's weight is 0 for footprints over lambda / Nmin; a block is skipped from a hair
-     * above that (the exact per-vertex test decides the rest) */
-    const float foot_zero = lambda_m / FILTER_NMIN * (1.0f + 1e-5f);
-    for (int b = 0; b < g->npad; b += VBLK) {
-        float wv[VBLK], fx[VBLK], fy[VBLK];
-        int off[VBLK], tile[VBLK];
-        if (g->blk_foot[b / VBLK] >= foot_zero)
-            continue;   /* w = 0 at the block's smallest footprint: so for all its vertices */
+    const float lambda_m = f->lambda_m, x0 = f->x0, y0 = f->y0, kx = f->kx, ky = f->ky;
+    const int wm = f->wm, hm = f->hm, wshift = f->wshift;
+    const float c_lo = -f->coord_max, c_hi = f->coord_max;   /* loaded: see u_lo */
+    for (int k = 0; k < nb; k++) {
+        const int b = blk[k];
         for (int e = 0; e < VBLK; e++) {
             float ft = foot[b + e];
             ft = ft > 1e-6f ? ft : 1e-6f;
             float u = (lambda_m / ft - FILTER_NMIN) * (1.0f / (FILTER_NMAX - FILTER_NMIN));
             u = u > u_lo ? u : u_lo;
             u = u < u_hi ? u : u_hi;
-            wv[e] = fade[b + e] * (u * u * (3.0f - 2.0f * u));
+            wv[b + e] = fade[b + e] * (u * u * (3.0f - 2.0f * u));
         }
-        if (g->acc_frame[b / VBLK] != frame) {
-            /* the block's first displacement this frame */
-            for (int e = 0; e < 4 * VBLK; e++)
-                acc[4 * (size_t)b + e] = 0.0f;
-            g->acc_frame[b / VBLK] = frame;
-        }
-        /* COORD_BIAS (a multiple of the size, < 2^31) makes the coordinates positive so
-         * truncation floors them (|x| < 2^30 texels; the fraction keeps 2^-22 texel) */
         for (int e = 0; e < VBLK; e++) {
-            double x = x0 + rx[b + e] * kx, y = y0 + ry[b + e] * ky;
+            /* clamped so the conversion is defined (|x| < 2^30 texels is 2^6 texel per ulp) */
+            float x = x0 + rx[b + e] * kx, y = y0 + ry[b + e] * ky;
+            x = x > c_lo ? x : c_lo;
+            x = x < c_hi ? x : c_hi;
+            y = y > c_lo ? y : c_lo;
+            y = y < c_hi ? y : c_hi;
             int ix = (int)x, iy = (int)y;
-            fx[e] = (float)(x - (double)ix);
-            fy[e] = (float)(y - (double)iy);
+            float flx = (float)ix, fly = (float)iy;
+            /* truncation rounds negatives up: floor is one less there (x - floor x is exact) */
+            int nx = x < flx, ny = y < fly;
+            ix -= nx;
+            iy -= ny;
+            fx[b + e] = x - (flx - (float)nx);
+            fy[b + e] = y - (fly - (float)ny);
             ix &= wm;
             iy &= hm;
-            off[e] = (iy << wshift) + iy + ix;    /* iy (w + 1) + ix */
-            tile[e] = ((iy >> TILE_LOG2) << tshift) + (ix >> TILE_LOG2);
-        }
-        for (int e = 0; e < VBLK; e++) {
-            if (im.stamp[tile[e]] != im.gen)
-                blend_tile(&im, tile[e] & (im.tiles_x - 1), tile[e] >> tshift);
-            const float *a = im.data + 4 * (size_t)off[e], *c = a + stride;
-            const float w = wv[e], sx = fx[e], sy = fy[e];
-            float *sum = acc + 4 * (size_t)(b + e);
-            for (int k = 0; k < 4; k++) {
-                float top = a[k] + (a[k + 4] - a[k]) * sx, bot = c[k] + (c[k + 4] - c[k]) * sx;
-                sum[k] += w * (top + (bot - top) * sy);
-            }
+            off[b + e] = (iy << wshift) + iy + ix;    /* iy (w + 1) + ix */
         }
     }
+}
+
+/* The weighted bilinear float4 fetches of the nb blocks at blk[], added to acc, or stored there
+ * for the first pattern (a vertex of weight 0, or of fade 0 on the patches, gets 0 times a
+ * finite texel: the images start zeroed). */
+static inline void disp_fetch(const float *restrict data, size_t stride, int nb,
+                              const int *restrict blk, const float *restrict wv,
+                              const float *restrict fx, const float *restrict fy,
+                              const int *restrict off, float *restrict acc, const int first)
+{
+    for (int k = 0; k < nb; k++) {
+        const int b = blk[k];
+        for (int e = 0; e < VBLK; e++) {
+            const float *a = data + 4 * (size_t)off[b + e], *c = a + stride;
+            const float sx = fx[b + e], sy = fy[b + e];
+            f4 a0 = ld4(a), a1 = ld4(a + 4), c0 = ld4(c), c1 = ld4(c + 4);
+            f4 top = a0 + (a1 - a0) * sx, bot = c0 + (c1 - c0) * sx;
+            f4 sum = wv[b + e] * (top + (bot - top) * sy);
+            if (!first)
+                sum = ld4(acc + 4 * (size_t)(b + e)) + sum;
+            memcpy(acc + 4 * (size_t)(b + e), &sum, sizeof(sum));
+        }
+    }
+}
+
+/* Sum the displacement of the nd patterns at df, weighted by Bruneton eq. 2, into acc (a float4
+ * per vertex), pattern by pattern over the blocks of VBLK vertices whose smallest footprint gives
+ * the pattern a weight > 0. The pattern with the largest wavelength goes first: its blocks hold
+ * every other pattern's, so it stores and the others add. Returns the footprint from which
+ * blocks were not displaced (write_vertices). */
+static float displace(struct grid *g, struct disp_frame *df, int nd)
+{
+    const int nblk = g->npad / VBLK;
+    int top = 0;
+    block_foot(g->npad, g->foot, g->blk_foot);
+    for (int i = 1; i < nd; i++)
+        top = df[i].foot_zero > df[top].foot_zero ? i : top;
+    for (int j = 0; j < nd; j++) {
+        struct disp_frame *f = &df[j == 0 ? top : (j <= top ? j - 1 : j)];
+        int nb = 0;
+        for (int k = 0; k < nblk; k++) {
+            g->blk[nb] = k * VBLK;
+            nb += g->blk_foot[k] < f->foot_zero;
+        }
+        /* eq. 2's clamp bounds loaded, not constants: with constants GCC threads the clamp's
+         * branches (w is 0 or 1 there) and can then no longer vectorise the loop */
+        disp_coords(f, nb, g->blk, g->rx, g->ry, g->foot, g->fade, g->unit[0], g->unit[1],
+                    g->wv, g->fx, g->fy, g->off);
+        if (j == 0)
+            disp_fetch(f->data, f->stride, nb, g->blk, g->wv, g->fx, g->fy, g->off, g->acc, 1);
+        else
+            disp_fetch(f->data, f->stride, nb, g->blk, g->wv, g->fx, g->fy, g->off, g->acc, 0);
+    }
+    return df[top].foot_zero;
+}
+
+/* The vertex attributes of n vertices from their rest positions and summed displacements d
+ * (x, y, z, 0): the moments are 0 (foam opacity 0) without CPU patterns, else the foam slot's
+ * clear fraction becomes the opacity. */
+static inline void write_tail(float *restrict vx, int n, const float *restrict rx,
+                              const float *restrict ry, const float *restrict d, float z, int cpu)
+{
+    for (int e = 0; e < n; e++, vx += GRID_FLOATS) {
+        vx[GRID_A_POS + 0] = rx[e] + d[4 * e + 0];
+        vx[GRID_A_POS + 1] = ry[e] + d[4 * e + 1];
+        vx[GRID_A_POS + 2] = z + d[4 * e + 2];
+        vx[GRID_A_REST] = rx[e];
+        vx[GRID_A_REST + 1] = ry[e];
+        if (cpu) {
+            vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
+        } else {
+            for (int c = GRID_A_SLOPE; c <= GRID_A_FOAM; c++)
+                vx[c] = 0.0f;
+        }
+    }
+}
+
+/* One vertex from its position p (lane 3: the rest x) and rest y. */
+static inline void write_one(float *restrict vx, f4 p, float y, const int cpu)
+{
+    memcpy(vx + GRID_A_POS, &p, sizeof(p));
+    if (cpu) {
+        vx[GRID_A_REST + 1] = y;
+        vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
+    } else {
+        f4 r = { y, 0.0f, 0.0f, 0.0f }, zero = { 0.0f, 0.0f, 0.0f, 0.0f };
+        memcpy(vx + GRID_A_REST + 1, &r, sizeof(r));
+        memcpy(vx + GRID_A_REST + 5, &zero, sizeof(zero));
+    }
+}
+
+/* write_tail for 4 vertices by vectors: the rest positions transposed to (x, y, z, x) per
+ * vertex (lane 3 of d is 0), unrolled by hand (GCC -O2 keeps a loop over them). */
+static inline void write_quad(float *restrict vx, const float *restrict rx,
+                              const float *restrict ry, const float *restrict d, f4 zz,
+                              const int cpu)
+{
+    f4 x = ld4(rx), y = ld4(ry);
+    f4 xy_lo = __builtin_shufflevector(x, y, 0, 4, 1, 5), xy_hi = __builtin_shufflevector(x, y, 2, 6, 3, 7);
+    f4 zx_lo = __builtin_shufflevector(zz, x, 0, 4, 1, 5), zx_hi = __builtin_shufflevector(zz, x, 2, 6, 3, 7);
+    write_one(vx, __builtin_shufflevector(xy_lo, zx_lo, 0, 1, 4, 5) + ld4(d), y[0], cpu);
+    write_one(vx + GRID_FLOATS, __builtin_shufflevector(xy_lo, zx_lo, 2, 3, 6, 7) + ld4(d + 4),
+              y[1], cpu);
+    write_one(vx + 2 * GRID_FLOATS, __builtin_shufflevector(xy_hi, zx_hi, 0, 1, 4, 5) + ld4(d + 8),
+              y[2], cpu);
+    write_one(vx + 3 * GRID_FLOATS, __builtin_shufflevector(xy_hi, zx_hi, 2, 3, 6, 7) + ld4(d + 12),
+              y[3], cpu);
+}
+
+/* The vertices: d is acc for the blocks displace() reached (smallest footprint under
+ * foot_disp), else zeros; cpu constant where write_quad is inlined. */
+static void write_vertices(const struct grid *g, float *verts, float z, int cpu, float foot_disp)
+{
+    _Static_assert(VBLK == 8, "write_vertices writes a block as two quads");
+    static const float none[4 * VBLK];
+    const f4 zz = { z, z, z, z };
+    int b = 0;
+    for (; b + VBLK <= g->nverts; b += VBLK) {
+        const float *d = g->blk_foot[b / VBLK] < foot_disp ? g->acc + 4 * (size_t)b : none;
+        float *vx = verts + (size_t)b * GRID_FLOATS;
+        if (cpu) {
+            write_quad(vx, g->rx + b, g->ry + b, d, zz, 1);
+            write_quad(vx + 4 * GRID_FLOATS, g->rx + b + 4, g->ry + b + 4, d + 16, zz, 1);
+        } else {
+            write_quad(vx, g->rx + b, g->ry + b, d, zz, 0);
+            write_quad(vx + 4 * GRID_FLOATS, g->rx + b + 4, g->ry + b + 4, d + 16, zz, 0);
+        }
+    }
+    if (b < g->nverts)
+        write_tail(verts + (size_t)b * GRID_FLOATS, g->nverts - b, g->rx + b, g->ry + b,
+                   g->blk_foot[b / VBLK] < foot_disp ? g->acc + 4 * (size_t)b : none, z, cpu);
 }
 
 /* Add CPU pattern f's slope and whitecap moments to every vertex: from the mip level whose
@@ -896,49 +1092,11 @@ static void row_distances(struct grid *g)
     }
 }
 
-/* The vertex attributes of n vertices from their rest positions and summed displacements d;
- * the moments are 0 (foam opacity 0) without CPU patterns, else the foam slot's clear fraction
- * becomes the opacity. */
-static inline void write_block(float *restrict vx, int n, const float *restrict rx,
-                               const float *restrict ry, const float *restrict d, float z,
-                               const int cpu)
-{
-    for (int e = 0; e < n; e++, vx += GRID_FLOATS, d += 4) {
-        vx[GRID_A_POS + 0] = rx[e] + d[0];
-        vx[GRID_A_POS + 1] = ry[e] + d[1];
-        vx[GRID_A_POS + 2] = z + d[2];
-        vx[GRID_A_REST] = rx[e];
-        vx[GRID_A_REST + 1] = ry[e];
-        if (cpu) {
-            vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
-        } else {
-            for (int c = GRID_A_SLOPE; c <= GRID_A_FOAM; c++)
-                vx[c] = 0.0f;
-        }
-    }
-}
-
-/* write_block with n and cpu constant where it is inlined (unrolled, no test per vertex) */
-static void write_vertices(const struct grid *g, float *verts, float z, int cpu)
-{
-    static const float none[4 * VBLK];
-    for (int b = 0; b < g->nverts; b += VBLK) {
-        /* blocks no pass displaced this frame add zeros */
-        const float *d = g->acc_frame[b / VBLK] == g->frame ? g->acc + 4 * (size_t)b : none;
-        float *vx = verts + (size_t)b * GRID_FLOATS;
-        if (b + VBLK > g->nverts)
-            write_block(vx, g->nverts - b, g->rx + b, g->ry + b, d, z, cpu);
-        else if (cpu)
-            write_block(vx, VBLK, g->rx + b, g->ry + b, d, z, 1);
-        else
-            write_block(vx, VBLK, g->rx + b, g->ry + b, d, z, 0);
-    }
-}
-
 int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts)
 {
-    struct pattern_frame pf[SWELL_MAX_PATTERNS];
-    int n, np = 0;
+    struct pattern_frame pf[SWELL_MAX_PATTERNS];    /* the CPU patterns' */
+    struct disp_frame df[SWELL_MAX_PATTERNS];       /* the displacing patterns' */
+    int n, np = 0, nd = 0;
     n = g->kind == 0 ? update_projected(g, cam, aspect) : update_patches(g, cam, aspect);
     if (n == 0)
         return 0;
@@ -948,26 +1106,37 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
         struct pattern_frame *f = &pf[np];
         struct stream_phase ph;
         float o[2];
-        grid_uv_offset(g->t, i, cam, o);
-        f->p = p;
-        f->lambda_m = p->lambda_m;
         /* eq. 2's weight is 0 for every vertex when it is 0 at the smallest wet footprint (the
          * float expressions are monotonic in the footprint) */
-        f->disp_on = p->lambda_m / foot_lo > FILTER_NMIN;
-        if (!f->disp_on && !p->cpu)
+        int disp_on = p->lambda_m / foot_lo > FILTER_NMIN;
+        if (!disp_on && !p->cpu)
             continue;
-        np++;
+        grid_uv_offset(g->t, i, cam, o);
         stream_loop_phase(t_s, tables_pattern_period(g->t, i), g->t->frames, &ph);
-        if (f->disp_on) {
+        if (disp_on) {
+            struct disp_frame *d = &df[nd++];
             int nx = p->disp->width, ny = p->disp->height;
-            f->kx = p->inv_l * nx;
-            f->ky = p->inv_l * ny;
-            f->x0 = (double)o[0] * nx - 0.5;
-            f->y0 = (double)o[1] * ny - 0.5;
             image_phase(&p->disp_f, &ph);
+            if (p->disp_f.stamp[0] != p->disp_f.gen)
+                blend_image(&p->disp_f);
+            d->data = p->disp_f.data;
+            d->lambda_m = p->lambda_m;
+            /* a block is skipped from a hair above lambda / Nmin, where the weight is 0 (the
+             * exact per-vertex weight decides the rest) */
+            d->foot_zero = p->lambda_m / FILTER_NMIN * (1.0f + 1e-5f);
+            d->kx = (float)(p->inv_l * nx);
+            d->ky = (float)(p->inv_l * ny);
+            d->x0 = (float)((double)o[0] * nx - 0.5);
+            d->y0 = (float)((double)o[1] * ny - 0.5);
+            d->wm = nx - 1;
+            d->hm = ny - 1;
+            d->wshift = __builtin_ctz((unsigned)nx);
+            d->stride = 4 * ((size_t)nx + 1);
+            d->coord_max = COORD_MAX;
         }
         if (p->cpu) {
             int top = p->levels - 1, lo, hi;
+            f->p = p;
             f->lev_k = (float)p->slope->width * (float)p->inv_l;
             lo = mip_level(g->foot_lo * f->lev_k, top);
             hi = mip_level(g->foot_hi * f->lev_k, top);
@@ -979,22 +1148,10 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
                 image_phase(&p->slope_f[l], &ph);
                 image_phase(&p->wc_f[l], &ph);
             }
+            np++;
         }
     }
-    int cpu = 0;
-    for (int i = 0; i < np; i++)
-        cpu |= pf[i].p->cpu;
-    if (++g->frame == 0)
-        g->frame = 1;   /* after 2^32 frames: stale blocks must never match */
-    for (int i = 0; i < np; i++)
-        if (pf[i].disp_on) {
-            block_foot(g->npad, g->foot, g->blk_foot);
-            break;
-        }
-    for (int i = 0; i < np; i++)
-        if (pf[i].disp_on)
-            disp_pass(g, &pf[i], g->acc);
-    if (cpu) {
+    if (np) {
         for (int k = 0; k < g->nverts; k++) {
             float *vx = verts + (size_t)k * GRID_FLOATS;
             for (int c = GRID_A_SLOPE; c < GRID_A_FOAM; c++)
@@ -1002,10 +1159,10 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             vx[GRID_A_FOAM] = 1.0f;
         }
         for (int i = 0; i < np; i++)
-            if (pf[i].p->cpu)
-                moment_pass(g, &pf[i], verts);
+            moment_pass(g, &pf[i], verts);
     }
-    write_vertices(g, verts, (float)-(cam->pos[2] > 0.5 ? cam->pos[2] : 0.5), cpu);
+    float foot_disp = nd ? displace(g, df, nd) : -INFINITY;
+    write_vertices(g, verts, (float)-(cam->pos[2] > 0.5 ? cam->pos[2] : 0.5), np > 0, foot_disp);
     row_distances(g);
     return n;
 }

@@ -61,14 +61,20 @@ static void add_pattern(struct swell_tables *s, int i, int n_geo, int n, float s
     }
 }
 
-static void make_tables(struct swell_tables *s)
+/* Two patterns, the long one first (as bakes order them) or, reversed, the short one first. */
+static void make_tables_order(struct swell_tables *s, int reversed)
 {
     memset(s, 0, sizeof(*s));
     s->patterns = 2;
     s->frames = F;
     s->loop_period_s = 4.0f;
-    add_pattern(s, 0, 16, 32, 60.0f, 1.5f);
-    add_pattern(s, 1, 8, 16, 7.0f, 0.3f);
+    add_pattern(s, reversed, 16, 32, 60.0f, 1.5f);
+    add_pattern(s, !reversed, 8, 16, 7.0f, 0.3f);
+}
+
+static void make_tables(struct swell_tables *s)
+{
+    make_tables_order(s, 0);
 }
 
 /* Every byte of every level (1x1 to 64x64: every tail of the 16- and 32-byte blocks) against
@@ -171,10 +177,12 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
 }
 
 /* grid_update's vertices against the definitions evaluated directly: rest + sum_i w_i D_i with
- * Bruneton eq. 2's w_i for the vertex's footprint, and pattern 0's (the CPU pattern's) moments
- * at the mip level of the footprint; over changing phases (tiles re-blended), a repeated phase
- * and a return to an earlier one. */
-static void test_grid_against_reference(void **state)
+ * Bruneton eq. 2's w_i for the vertex's footprint (texel coordinates in double here, in float
+ * in grid.c), and pattern 0's (the CPU pattern's) moments at the mip level of the footprint;
+ * over changing phases (images re-blended), a repeated phase and a return to an earlier one;
+ * with the longer pattern first or second (grid.c sums from the longest, which stores), near
+ * the origin and 40 km out (wrapped texture offsets). */
+static void check_grid_against_reference(int reversed, double cx, double cy)
 {
     struct swell_tables s;
     struct grid *g;
@@ -183,8 +191,7 @@ static void test_grid_against_reference(void **state)
     struct swell_err err;
     int w = 33, h = 25, checked_disp = 0, checked_zero = 0;
     static const double times[] = { 0.0, 0.37, 0.37, 1.91, 0.37, 3.99 };
-    (void)state;
-    make_tables(&s);
+    make_tables_order(&s, reversed);
     d.tables = &s;
     d.w = w;
     d.h = h;
@@ -192,8 +199,8 @@ static void test_grid_against_reference(void **state)
     assert_int_equal(grid_create(&d, &g, &err), 0);
     float *verts = calloc((size_t)grid_vertex_count(g) * GRID_FLOATS, sizeof(float));
     camera_defaults(&c);
-    c.pos[0] = 1234.5;
-    c.pos[1] = -321.25;
+    c.pos[0] = cx;
+    c.pos[1] = cy;
     c.pos[2] = 6.0;
     c.heading_deg = 70.0f;
     c.pitch_deg = -20.0f;
@@ -256,6 +263,14 @@ static void test_grid_against_reference(void **state)
     free(verts);
     grid_destroy(g);
     tables_destroy(&s);
+}
+
+static void test_grid_against_reference(void **state)
+{
+    (void)state;
+    check_grid_against_reference(0, 1234.5, -321.25);
+    check_grid_against_reference(1, 1234.5, -321.25);
+    check_grid_against_reference(0, -40000.375, 38000.5);
 }
 
 /* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
