@@ -50,6 +50,8 @@ struct f4_image {
     int level, w, h, tiles_x;
     uint32_t gen;             /* bumped when the phase changes */
     struct stream_phase ph;   /* phase of generation gen */
+    int box[4];               /* displacement: footprints blended for generation box_gen, */
+    uint32_t box_gen;         /* first texels from box[0] over box[1] columns, box[2] and [3] rows */
 };
 
 struct grid_pattern {
@@ -76,13 +78,14 @@ struct pattern_frame {
 /* One frame's constants of a pattern that displaces some vertex (eq. 2 weight > 0): texel
  * coordinates of its displacement image x = x0 + rest_x kx, in float. */
 struct disp_frame {
-    const float *data;        /* the pattern's blended displacement image (f4_image) */
+    struct f4_image *im;      /* the pattern's displacement image */
+    const float *data;        /* its texels */
     float x0, y0, kx, ky;
     float lambda_m;           /* eq. 2's characteristic wavelength, m */
     float foot_zero;          /* footprints from this one up give weight 0, m */
     float coord_max;          /* COORD_MAX */
     int wm, hm, wshift;
-    size_t stride;            /* floats per padded image row */
+    size_t stride;            /* bytes per padded image row */
 };
 
 /* Per-vertex arrays are structures of arrays over npad = nverts rounded up to VBLK entries (plus
@@ -102,10 +105,10 @@ struct grid {
     float *row_d2;            /* per projected grid row: smallest squared distance, m^2 */
     float *acc;               /* per-vertex summed displacement (x, y, z, 0), m (displace) */
     float *wv, *fx, *fy;      /* per vertex, one pattern's eq. 2 weight and bilinear fractions */
-    int *off;                 /* and its texel offset (disp_coords) */
+    int *off;                 /* and its texel's byte offset (disp_coords) */
     float *blk_foot;          /* per block of VBLK vertices: its smallest footprint this frame, m */
-    int *blk;                 /* first vertices of the blocks a pattern displaces */
-    float unit[2];            /* 0 and 1, eq. 2's clamp (displace says why a field) */
+    int *run;                 /* [start, end) vertices of the runs of blocks a pattern displaces */
+    float unit[3];            /* 0, 1 and 1e-6 m: clamp bounds (disp_coords says why a field) */
     double *col_sx;           /* per projected grid column (ws): NDC x of its rays */
     float *row_x, *row_y;     /* one projected grid row's rest positions (ws), m */
     float foot_lo, foot_hi;   /* smallest and largest footprint this frame */
@@ -290,7 +293,7 @@ void grid_destroy(struct grid *g)
     free(g->fy);
     free(g->off);
     free(g->blk_foot);
-    free(g->blk);
+    free(g->run);
     free(g->fade);
     free(g->foot);
     free(g->rx);
@@ -338,7 +341,7 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
         g->fy = calloc((size_t)g->npad, sizeof(float));
         g->off = calloc((size_t)g->npad, sizeof(int));
         g->blk_foot = calloc((size_t)g->npad / VBLK, sizeof(float));
-        g->blk = calloc((size_t)g->npad / VBLK, sizeof(int));
+        g->run = calloc((size_t)g->npad / VBLK + 1, sizeof(int));
         g->foot = calloc(n, sizeof(float));
         g->fade = calloc(n, sizeof(float));
         g->rx = calloc(n, sizeof(float));
@@ -350,13 +353,14 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     }
     if (!g->foot || !g->fade || !g->row_foot || !g->rx || !g->ry || !g->row_d2 ||
         !g->col_sx || !g->row_x || !g->row_y || !g->acc || !g->wv || !g->fx || !g->fy ||
-        !g->off || !g->blk_foot || !g->blk) {
+        !g->off || !g->blk_foot || !g->run) {
         rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for %d vertices", g->nverts);
         goto fail;
     }
     init_fade(g);
     g->unit[0] = 0.0f;
     g->unit[1] = 1.0f;
+    g->unit[2] = 1e-6f;
     for (int i = 0; i < t->patterns; i++) {
         struct grid_pattern *p = &g->p[i];
         const struct swell_pattern_info *pi = &t->pattern[i];
@@ -443,6 +447,27 @@ static inline void blend_block(float *restrict out, const uint8_t *restrict a,
     memcpy(out, t, sizeof(t));
 }
 
+/* n bytes (a multiple of BLEND_BLOCK) of a row from ra / rb. */
+static inline void blend_span(float *restrict o, const uint8_t *restrict ra,
+                              const uint8_t *restrict rb, size_t n, f4 sc, f4 bi, uint16_t w0,
+                              uint16_t w1, const uint16_t rnd, const int shift)
+{
+    for (size_t k = 0; k < n; k += BLEND_BLOCK)
+        blend_block(o + k, ra + k, rb + k, sc, bi, w0, w1, rnd, shift);
+}
+
+/* One texel from ea / eb. */
+static inline void blend_texel(float *restrict o, const uint8_t *restrict ea,
+                               const uint8_t *restrict eb, f4 sc, f4 bi, uint16_t w0,
+                               uint16_t w1, const uint16_t rnd, const int shift)
+{
+    f4 v;
+    for (int c = 0; c < 4; c++)
+        v[c] = (float)((uint16_t)(ea[c] * w0 + eb[c] * w1 + rnd) >> shift);
+    v = bi + sc * v;
+    memcpy(o, &v, sizeof(v));
+}
+
 /* One row of a tile: n bytes (a multiple of BLEND_BLOCK) from ra / rb, then the texel after
  * them from ea / eb (the next column, or column 0 where the row wraps). */
 static inline void blend_row(float *restrict o, const uint8_t *restrict ra,
@@ -450,13 +475,8 @@ static inline void blend_row(float *restrict o, const uint8_t *restrict ra,
                              const uint8_t *restrict eb, size_t n, f4 sc, f4 bi, uint16_t w0,
                              uint16_t w1, const uint16_t rnd, const int shift)
 {
-    f4 v;
-    for (size_t k = 0; k < n; k += BLEND_BLOCK)
-        blend_block(o + k, ra + k, rb + k, sc, bi, w0, w1, rnd, shift);
-    for (int c = 0; c < 4; c++)
-        v[c] = (float)((uint16_t)(ea[c] * w0 + eb[c] * w1 + rnd) >> shift);
-    v = bi + sc * v;
-    memcpy(o + n, &v, sizeof(v));
+    blend_span(o, ra, rb, n, sc, bi, w0, w1, rnd, shift);
+    blend_texel(o + n, ea, eb, sc, bi, w0, w1, rnd, shift);
 }
 
 /* Blend tile (tx, ty) of im for its phase: texels [x0, x0 + TILE] x [y0, y0 + TILE] clipped to
@@ -501,9 +521,42 @@ static void blend_tile(struct f4_image *im, int tx, int ty)
     im->stamp[ty * im->tiles_x + tx] = im->gen;
 }
 
-/* Blend every stale tile of im: for images at least a block wide, row by row (each row's next
- * column is its column 0, the row after the last is row 0), the same values blend_tile gives. */
-static void blend_image(struct f4_image *im)
+/* Padded indices [r[0], r[1]) (and [r[2], r[3])) holding the bilinear footprints whose first
+ * index runs over m from s, circularly in [0, n): index n is the copy of 0. Returns 1 or 2. */
+static int pad_ranges(int s, int m, int n, int r[4])
+{
+    if (m >= n) {
+        r[0] = 0;
+        r[1] = n + 1;
+        return 1;
+    }
+    if (s + m <= n) {
+        r[0] = s;
+        r[1] = s + m + 1;
+        return 1;
+    }
+    r[0] = s;
+    r[1] = n + 1;
+    r[2] = 0;
+    r[3] = s + m - n + 1;
+    return 2;
+}
+
+/* Whether the displacement image im holds, for its phase, every footprint whose first texel is
+ * in mx columns from sx and my rows from sy (circularly). */
+static int box_blended(const struct f4_image *im, int sx, int mx, int sy, int my)
+{
+    if (im->box_gen != im->gen)
+        return 0;
+    return (im->box[1] >= im->w || ((sx - im->box[0]) & (im->w - 1)) + mx <= im->box[1]) &&
+           (im->box[3] >= im->h || ((sy - im->box[2]) & (im->h - 1)) + my <= im->box[3]);
+}
+
+/* Blend, for its phase, the texels of the displacement image im that the bilinear footprints
+ * with first texels in mx columns from sx and my rows from sy (circularly) read: rows by
+ * vector spans of whole blocks, plus the padded column from column 0. Images narrower than a
+ * block are blended whole by tiles. */
+static void blend_box(struct f4_image *im, int sx, int mx, int sy, int my)
 {
     const struct swell_table *t = im->t;
     const struct stream_phase *ph = &im->ph;
@@ -513,24 +566,41 @@ static void blend_image(struct f4_image *im)
     const uint8_t *a = t->data + table_offset(t, im->level, f0);
     const uint8_t *b = t->data + table_offset(t, im->level, f1);
     const f4 sc = ld4(im->sc), bi = ld4(im->bi);
-    int ntiles = im->tiles_x * tiles_of(im->h);
+    int xr[4], yr[4], nxr, nyr;
     if (row % BLEND_BLOCK) {
+        int ntiles = im->tiles_x * tiles_of(im->h);
         for (int k = 0; k < ntiles; k++)
             if (im->stamp[k] != im->gen)
                 blend_tile(im, k % im->tiles_x, k / im->tiles_x);
-        return;
+        sx = sy = 0;
+        mx = im->w;
+        my = im->h;
+    } else {
+        nxr = pad_ranges(sx, mx, im->w, xr);
+        nyr = pad_ranges(sy, my, im->h, yr);
+        for (int j = 0; j < 2 * nyr; j += 2)
+            for (int y = yr[j]; y < yr[j + 1]; y++) {
+                const uint8_t *ra = a + (size_t)(y & (im->h - 1)) * row;
+                const uint8_t *rb = b + (size_t)(y & (im->h - 1)) * row;
+                float *o = im->data + (size_t)y * stride;
+                for (int i = 0; i < 2 * nxr; i += 2) {
+                    /* whole blocks of columns up to the last real one, then the padded one */
+                    int c0 = xr[i] & ~3, c1 = xr[i + 1] < im->w ? (xr[i + 1] + 3) & ~3 : im->w;
+                    size_t k0 = 4 * (size_t)c0, n = 4 * (size_t)(c1 - c0);
+                    if (im->shift)
+                        blend_span(o + k0, ra + k0, rb + k0, n, sc, bi, w0, w1, STREAM_W_ONE / 2, 8);
+                    else
+                        blend_span(o + k0, ra + k0, rb + k0, n, sc, bi, w0, w1, 0, 0);
+                    if (xr[i + 1] > im->w)
+                        blend_texel(o + row, ra, rb, sc, bi, w0, w1, im->rnd, im->shift);
+                }
+            }
     }
-    for (int y = 0; y <= im->h; y++) {
-        const uint8_t *ra = a + (size_t)(y & (im->h - 1)) * row;
-        const uint8_t *rb = b + (size_t)(y & (im->h - 1)) * row;
-        float *o = im->data + (size_t)y * stride;
-        if (im->shift)
-            blend_row(o, ra, rb, ra, rb, row, sc, bi, w0, w1, STREAM_W_ONE / 2, 8);
-        else
-            blend_row(o, ra, rb, ra, rb, row, sc, bi, w0, w1, 0, 0);
-    }
-    for (int k = 0; k < ntiles; k++)
-        im->stamp[k] = im->gen;
+    im->box[0] = sx;
+    im->box[1] = mx;
+    im->box[2] = sy;
+    im->box[3] = my;
+    im->box_gen = im->gen;
 }
 
 /* Start a new generation of im when the pattern's phase has moved: every tile is stale. */
@@ -606,80 +676,116 @@ static void block_foot(int n, const float *restrict foot, float *restrict out)
     }
 }
 
-/* For the nb blocks of VBLK vertices starting at blk[]: the weights of Bruneton eq. 2 for each
- * vertex's cell of size foot (times the fade), the texel coordinates x = x0 + rest_x kx in float,
- * floored (rest positions are camera-relative floats and x0 a wrapped offset: float keeps what
- * the inputs hold), and the offsets and tiles of the bilinear footprints. Fixed-size inner loops
- * over restrict-qualified arrays are what -O2's very-cheap vectoriser accepts. */
-static void disp_coords(const struct disp_frame *f, int nb, const int *restrict blk,
-                        const float *restrict rx, const float *restrict ry,
-                        const float *restrict foot, const float *restrict fade, float u_lo,
-                        float u_hi, float *restrict wv, float *restrict fx, float *restrict fy,
-                        int *restrict off)
+/* For the vertices of the nr runs [run[2r], run[2r + 1]) (whole blocks): the weights of
+ * Bruneton eq. 2 for each vertex's cell of size foot (times the fade), the texel coordinates
+ * x = x0 + rest_x kx in float, floored (rest positions are camera-relative floats and x0 a
+ * wrapped offset: float keeps what the inputs hold), and the byte offsets of the bilinear
+ * footprints. By quads: a fixed loop of 4 over restrict-qualified arrays is what -O2's
+ * vectorisers turn into straight vector code. */
+static void disp_coords(const struct disp_frame *f, int nr, const int *restrict run,
+                               const float *restrict rx, const float *restrict ry,
+                               const float *restrict foot, const float *restrict fade,
+                               const float *unit, float *restrict wv, float *restrict fx,
+                               float *restrict fy, int *restrict off, float ext[4])
 {
     const float lambda_m = f->lambda_m, x0 = f->x0, y0 = f->y0, kx = f->kx, ky = f->ky;
+    float xl[4], xh[4], yl[4], yh[4];
     const int wm = f->wm, hm = f->hm, wshift = f->wshift;
-    const float c_lo = -f->coord_max, c_hi = f->coord_max;   /* loaded: see u_lo */
-    for (int k = 0; k < nb; k++) {
-        const int b = blk[k];
-        for (int e = 0; e < VBLK; e++) {
-            float ft = foot[b + e];
-            ft = ft > 1e-6f ? ft : 1e-6f;
-            float u = (lambda_m / ft - FILTER_NMIN) * (1.0f / (FILTER_NMAX - FILTER_NMIN));
-            u = u > u_lo ? u : u_lo;
-            u = u < u_hi ? u : u_hi;
-            wv[b + e] = fade[b + e] * (u * u * (3.0f - 2.0f * u));
-        }
-        for (int e = 0; e < VBLK; e++) {
-            /* clamped so the conversion is defined (|x| < 2^30 texels is 2^6 texel per ulp) */
-            float x = x0 + rx[b + e] * kx, y = y0 + ry[b + e] * ky;
-            x = x > c_lo ? x : c_lo;
-            x = x < c_hi ? x : c_hi;
-            y = y > c_lo ? y : c_lo;
-            y = y < c_hi ? y : c_hi;
-            int ix = (int)x, iy = (int)y;
-            float flx = (float)ix, fly = (float)iy;
-            /* truncation rounds negatives up: floor is one less there (x - floor x is exact) */
-            int nx = x < flx, ny = y < fly;
-            ix -= nx;
-            iy -= ny;
-            fx[b + e] = x - (flx - (float)nx);
-            fy[b + e] = y - (fly - (float)ny);
-            ix &= wm;
-            iy &= hm;
-            off[b + e] = (iy << wshift) + iy + ix;    /* iy (w + 1) + ix */
-        }
+    /* bounds loaded, not constants: with constants GCC threads the clamps' branches (w is 0 or
+     * 1 there) and can then no longer vectorise the loop, or selects by masks, not max/min */
+    const float u_lo = unit[0], u_hi = unit[1], ft_lo = unit[2];
+    const float c_lo = -f->coord_max, c_hi = f->coord_max;
+    for (int e = 0; e < 4; e++) {
+        xl[e] = yl[e] = c_hi;
+        xh[e] = yh[e] = c_lo;
+    }
+    for (int r = 0; r < nr; r++)
+        for (int q = run[2 * r]; q < run[2 * r + 1]; q += 4)
+            for (int e = q; e < q + 4; e++) {
+                float ft = foot[e];
+                ft = ft > ft_lo ? ft : ft_lo;
+                float u = (lambda_m / ft - FILTER_NMIN) * (1.0f / (FILTER_NMAX - FILTER_NMIN));
+                u = u > u_lo ? u : u_lo;
+                u = u < u_hi ? u : u_hi;
+                wv[e] = fade[e] * (u * u * (3.0f - 2.0f * u));
+                /* clamped so the conversion is defined (|x| < 2^30 texels: 2^6 texel per ulp) */
+                float x = x0 + rx[e] * kx, y = y0 + ry[e] * ky;
+                x = x > c_lo ? x : c_lo;
+                x = x < c_hi ? x : c_hi;
+                y = y > c_lo ? y : c_lo;
+                y = y < c_hi ? y : c_hi;
+                xl[e - q] = x < xl[e - q] ? x : xl[e - q];
+                xh[e - q] = x > xh[e - q] ? x : xh[e - q];
+                yl[e - q] = y < yl[e - q] ? y : yl[e - q];
+                yh[e - q] = y > yh[e - q] ? y : yh[e - q];
+                /* floor: truncation rounds negatives up, so one less where the fraction is
+                 * negative (x - trunc x is exact; 1 + it rounds to within 2^-24 texel) */
+                int ix = (int)x, iy = (int)y;
+                float sx = x - (float)ix, sy = y - (float)iy;
+                int nx = sx < 0.0f, ny = sy < 0.0f;
+                fx[e] = sx + (float)nx;
+                fy[e] = sy + (float)ny;
+                ix = (ix - nx) & wm;
+                iy = (iy - ny) & hm;
+                /* bytes: 16 (iy (w + 1) + ix), in an int up to 11585^2 texels */
+                off[e] = 16 * ((iy << wshift) + iy + ix);
+            }
+    ext[0] = ext[2] = c_hi;
+    ext[1] = ext[3] = c_lo;
+    for (int e = 0; e < 4; e++) {
+        ext[0] = xl[e] < ext[0] ? xl[e] : ext[0];
+        ext[1] = xh[e] > ext[1] ? xh[e] : ext[1];
+        ext[2] = yl[e] < ext[2] ? yl[e] : ext[2];
+        ext[3] = yh[e] > ext[3] ? yh[e] : ext[3];
     }
 }
 
-/* The weighted bilinear float4 fetches of the nb blocks at blk[], added to acc, or stored there
- * for the first pattern (a vertex of weight 0, or of fade 0 on the patches, gets 0 times a
- * finite texel: the images start zeroed). */
-static inline void disp_fetch(const float *restrict data, size_t stride, int nb,
-                              const int *restrict blk, const float *restrict wv,
+/* floor(x) for |x| <= COORD_MAX */
+static inline int floor_int(float x)
+{
+    int i = (int)x;
+    return i - (x < (float)i);
+}
+
+/* The weighted bilinear float4 fetches of the vertices of the nr runs, added to acc, or stored
+ * there for the first pattern (a vertex of weight 0, or of fade 0 on the patches, gets 0 times
+ * a finite texel: the images start zeroed). stride: bytes per image row. */
+static inline void fetch_one(const char *restrict base, const char *restrict base_c, int off,
+                             float w, float sx, float sy, float *restrict acc, const int first)
+{
+    const float *a = (const float *)(base + off), *c = (const float *)(base_c + off);
+    f4 a0 = ld4(a), a1 = ld4(a + 4), c0 = ld4(c), c1 = ld4(c + 4);
+    f4 top = a0 + (a1 - a0) * sx, bot = c0 + (c1 - c0) * sx;
+    f4 sum = w * (top + (bot - top) * sy);
+    if (!first)
+        sum = ld4(acc) + sum;
+    memcpy(acc, &sum, sizeof(sum));
+}
+
+static inline void disp_fetch(const float *restrict data, size_t stride, int nr,
+                              const int *restrict run, const float *restrict wv,
                               const float *restrict fx, const float *restrict fy,
                               const int *restrict off, float *restrict acc, const int first)
 {
-    for (int k = 0; k < nb; k++) {
-        const int b = blk[k];
-        for (int e = 0; e < VBLK; e++) {
-            const float *a = data + 4 * (size_t)off[b + e], *c = a + stride;
-            const float sx = fx[b + e], sy = fy[b + e];
-            f4 a0 = ld4(a), a1 = ld4(a + 4), c0 = ld4(c), c1 = ld4(c + 4);
-            f4 top = a0 + (a1 - a0) * sx, bot = c0 + (c1 - c0) * sx;
-            f4 sum = wv[b + e] * (top + (bot - top) * sy);
-            if (!first)
-                sum = ld4(acc + 4 * (size_t)(b + e)) + sum;
-            memcpy(acc + 4 * (size_t)(b + e), &sum, sizeof(sum));
+    const char *base = (const char *)data, *base_c = base + stride;
+    /* by quads unrolled by hand (runs are whole blocks): -O2 keeps a loop otherwise */
+    for (int r = 0; r < nr; r++)
+        for (int e = run[2 * r]; e < run[2 * r + 1]; e += 4) {
+            fetch_one(base, base_c, off[e], wv[e], fx[e], fy[e], acc + 4 * (size_t)e, first);
+            fetch_one(base, base_c, off[e + 1], wv[e + 1], fx[e + 1], fy[e + 1],
+                      acc + 4 * (size_t)e + 4, first);
+            fetch_one(base, base_c, off[e + 2], wv[e + 2], fx[e + 2], fy[e + 2],
+                      acc + 4 * (size_t)e + 8, first);
+            fetch_one(base, base_c, off[e + 3], wv[e + 3], fx[e + 3], fy[e + 3],
+                      acc + 4 * (size_t)e + 12, first);
         }
-    }
 }
 
 /* Sum the displacement of the nd patterns at df, weighted by Bruneton eq. 2, into acc (a float4
- * per vertex), pattern by pattern over the blocks of VBLK vertices whose smallest footprint gives
- * the pattern a weight > 0. The pattern with the largest wavelength goes first: its blocks hold
- * every other pattern's, so it stores and the others add. Returns the footprint from which
- * blocks were not displaced (write_vertices). */
+ * per vertex), pattern by pattern over the runs of blocks of VBLK vertices whose smallest
+ * footprint gives the pattern a weight > 0. The pattern with the longest wavelength goes first:
+ * its blocks hold every other pattern's, so it stores and the others add. Returns the footprint
+ * from which blocks were not displaced (write_vertices). */
 static float displace(struct grid *g, struct disp_frame *df, int nd)
 {
     const int nblk = g->npad / VBLK;
@@ -689,19 +795,37 @@ static float displace(struct grid *g, struct disp_frame *df, int nd)
         top = df[i].foot_zero > df[top].foot_zero ? i : top;
     for (int j = 0; j < nd; j++) {
         struct disp_frame *f = &df[j == 0 ? top : (j <= top ? j - 1 : j)];
-        int nb = 0;
+        int nr = 0, in = 0;
         for (int k = 0; k < nblk; k++) {
-            g->blk[nb] = k * VBLK;
-            nb += g->blk_foot[k] < f->foot_zero;
+            int on = g->blk_foot[k] < f->foot_zero;
+            if (on != in)
+                g->run[nr++] = k * VBLK;    /* a run starts or ends */
+            in = on;
         }
-        /* eq. 2's clamp bounds loaded, not constants: with constants GCC threads the clamp's
-         * branches (w is 0 or 1 there) and can then no longer vectorise the loop */
-        disp_coords(f, nb, g->blk, g->rx, g->ry, g->foot, g->fade, g->unit[0], g->unit[1],
-                    g->wv, g->fx, g->fy, g->off);
+        if (in)
+            g->run[nr++] = nblk * VBLK;
+        nr /= 2;
+        float ext[4];
+        if (nr == 0)
+            continue;
+        disp_coords(f, nr, g->run, g->rx, g->ry, g->foot, g->fade, g->unit, g->wv, g->fx, g->fy,
+                    g->off, ext);
+        {
+            /* the image's texels under this pattern's footprints (first texels floor(x) from
+             * the smallest to the largest x), blended unless they already are for this phase */
+            int xl = floor_int(ext[0]), yl = floor_int(ext[2]);
+            int mx = floor_int(ext[1]) - xl + 1, my = floor_int(ext[3]) - yl + 1;
+            xl &= f->wm;
+            yl &= f->hm;
+            if (!box_blended(f->im, xl, mx, yl, my))
+                blend_box(f->im, xl, mx, yl, my);
+        }
         if (j == 0)
-            disp_fetch(f->data, f->stride, nb, g->blk, g->wv, g->fx, g->fy, g->off, g->acc, 1);
+            disp_fetch(f->data, f->stride, nr, g->run, g->wv, g->fx, g->fy,
+                       g->off, g->acc, 1);
         else
-            disp_fetch(f->data, f->stride, nb, g->blk, g->wv, g->fx, g->fy, g->off, g->acc, 0);
+            disp_fetch(f->data, f->stride, nr, g->run, g->wv, g->fx, g->fy,
+                       g->off, g->acc, 0);
     }
     return df[top].foot_zero;
 }
@@ -1117,8 +1241,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             struct disp_frame *d = &df[nd++];
             int nx = p->disp->width, ny = p->disp->height;
             image_phase(&p->disp_f, &ph);
-            if (p->disp_f.stamp[0] != p->disp_f.gen)
-                blend_image(&p->disp_f);
+            d->im = &p->disp_f;
             d->data = p->disp_f.data;
             d->lambda_m = p->lambda_m;
             /* a block is skipped from a hair above lambda / Nmin, where the weight is 0 (the
@@ -1131,7 +1254,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             d->wm = nx - 1;
             d->hm = ny - 1;
             d->wshift = __builtin_ctz((unsigned)nx);
-            d->stride = 4 * ((size_t)nx + 1);
+            d->stride = sizeof(f4) * ((size_t)nx + 1);
             d->coord_max = COORD_MAX;
         }
         if (p->cpu) {

@@ -179,7 +179,8 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
 /* grid_update's vertices against the definitions evaluated directly: rest + sum_i w_i D_i with
  * Bruneton eq. 2's w_i for the vertex's footprint (texel coordinates in double here, in float
  * in grid.c), and pattern 0's (the CPU pattern's) moments at the mip level of the footprint;
- * over changing phases (images re-blended), a repeated phase and a return to an earlier one;
+ * over changing phases (images re-blended), a repeated phase (the view turned: more texels)
+ * and a return to an earlier one;
  * with the longer pattern first or second (grid.c sums from the longest, which stores), near
  * the origin and 40 km out (wrapped texture offsets). */
 static void check_grid_against_reference(int reversed, double cx, double cy)
@@ -190,7 +191,8 @@ static void check_grid_against_reference(int reversed, double cx, double cy)
     struct camera c;
     struct swell_err err;
     int w = 33, h = 25, checked_disp = 0, checked_zero = 0;
-    static const double times[] = { 0.0, 0.37, 0.37, 1.91, 0.37, 3.99 };
+    static const double times[] = { 0.0, 0.37, 0.37, 0.37, 1.91, 0.37, 3.99 };
+    static const float heading[] = { 70.0f, 160.0f, 250.0f, 300.0f, 250.0f, 70.0f, 300.0f };
     make_tables_order(&s, reversed);
     d.tables = &s;
     d.w = w;
@@ -206,6 +208,8 @@ static void check_grid_against_reference(int reversed, double cx, double cy)
     c.pitch_deg = -20.0f;
     for (size_t ti = 0; ti < sizeof(times) / sizeof(times[0]); ti++) {
         double t_s = times[ti];
+        /* turning: a repeated phase with another view must blend the texels it adds */
+        c.heading_deg = heading[ti];
         struct stream_phase ph[2];
         float off[2][2];
         assert_true(grid_update(g, &c, 16.0f / 9.0f, t_s, verts) > 0);
