@@ -77,18 +77,19 @@ static void make_tables(struct swell_tables *s)
     make_tables_order(s, 0);
 }
 
-/* Every byte of every level (1x1 to 64x64: every tail of the 16- and 32-byte blocks) against
+/* Every byte of every level of a 64x64 chain (4096 down to 1 texels) and a 16x2 one (32, 8 and
+ * 2 texels: the 64-byte loop, single 16-byte blocks and the byte tail) against
  * (a w0 + b w1 + 128) >> 8, for weights 0 (the copy), 1, 255 and others. */
-static void test_stream_blend_exact(void **state)
+static void check_stream_blend_exact(int width, int height, int levels)
 {
     struct swell_table t;
     struct swell_err err;
-    (void)state;
     memset(&t, 0, sizeof(t));
     t.format = FORMAT_RGBA8;
-    t.width = t.height = 64;
+    t.width = width;
+    t.height = height;
     t.layers = 3;
-    t.levels = 7;
+    t.levels = levels;
     assert_int_equal(table_alloc(&t, &err), 0);
     for (size_t i = 0; i < table_bytes(&t); i++)
         t.data[i] = (uint8_t)(frand() * 256.0f);
@@ -109,6 +110,13 @@ static void test_stream_blend_exact(void **state)
     }
     free(dst);
     free(t.data);
+}
+
+static void test_stream_blend_exact(void **state)
+{
+    (void)state;
+    check_stream_blend_exact(64, 64, 7);
+    check_stream_blend_exact(16, 2, 5);
 }
 
 static int mip_loop(float r, int levels)
