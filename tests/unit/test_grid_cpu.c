@@ -61,20 +61,21 @@ static void add_pattern(struct swell_tables *s, int i, int n_geo, int n, float s
     }
 }
 
-/* Two patterns, the long one first (as bakes order them) or, reversed, the short one first. */
-static void make_tables_order(struct swell_tables *s, int reversed)
+/* Two patterns, the long one first (as bakes order them) or, reversed, the short one first;
+ * narrow: the short one's displacement 2x2, under a blend block wide (blended by tiles). */
+static void make_tables_order(struct swell_tables *s, int reversed, int narrow)
 {
     memset(s, 0, sizeof(*s));
     s->patterns = 2;
     s->frames = F;
     s->loop_period_s = 4.0f;
     add_pattern(s, reversed, 16, 32, 60.0f, 1.5f);
-    add_pattern(s, !reversed, 8, 16, 7.0f, 0.3f);
+    add_pattern(s, !reversed, narrow ? 2 : 8, 16, 7.0f, 0.3f);
 }
 
 static void make_tables(struct swell_tables *s)
 {
-    make_tables_order(s, 0);
+    make_tables_order(s, 0, 0);
 }
 
 /* Every byte of every level of a 64x64 chain (4096 down to 1 texels) and a 16x2 one (32, 8 and
@@ -190,8 +191,9 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
  * over changing phases (images re-blended), a repeated phase (the view turned: more texels)
  * and a return to an earlier one;
  * with the longer pattern first or second (grid.c sums from the longest, which stores), near
- * the origin and 40 km out (wrapped texture offsets). */
-static void check_grid_against_reference(int reversed, double cx, double cy)
+ * the origin and 40 km out (wrapped texture offsets), and with a displacement image narrower
+ * than a blend block. */
+static void check_grid_against_reference(int reversed, int narrow, double cx, double cy)
 {
     struct swell_tables s;
     struct grid *g;
@@ -201,7 +203,7 @@ static void check_grid_against_reference(int reversed, double cx, double cy)
     int w = 33, h = 25, checked_disp = 0, checked_zero = 0;
     static const double times[] = { 0.0, 0.37, 0.37, 0.37, 1.91, 0.37, 3.99 };
     static const float heading[] = { 70.0f, 160.0f, 250.0f, 300.0f, 250.0f, 70.0f, 300.0f };
-    make_tables_order(&s, reversed);
+    make_tables_order(&s, reversed, narrow);
     d.tables = &s;
     d.w = w;
     d.h = h;
@@ -280,9 +282,10 @@ static void check_grid_against_reference(int reversed, double cx, double cy)
 static void test_grid_against_reference(void **state)
 {
     (void)state;
-    check_grid_against_reference(0, 1234.5, -321.25);
-    check_grid_against_reference(1, 1234.5, -321.25);
-    check_grid_against_reference(0, -40000.375, 38000.5);
+    check_grid_against_reference(0, 0, 1234.5, -321.25);
+    check_grid_against_reference(1, 0, 1234.5, -321.25);
+    check_grid_against_reference(0, 0, -40000.375, 38000.5);
+    check_grid_against_reference(0, 1, 1234.5, -321.25);
 }
 
 /* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
