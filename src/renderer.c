@@ -1171,7 +1171,8 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
               ? "high: Ross BRDF sun (eq. 15), sky map filtered with explicit gradients (eq. 27, "
                 "textureGrad), effective Fresnel (eq. 26) on Hu's Fresnel texture, "
                 "refraction (eq. 28), whitecaps (Dupuy eq. 6)"
-              : "high: Ross BRDF sun (eq. 15), sky map LOD-biased (eq. 27), effective Fresnel "
+              : "high: Ross BRDF sun (eq. 15), sky map filtered by an LOD bias beyond the pixel's "
+                "own LOD, read from the map's alpha (eq. 27), effective Fresnel "
               "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"
             : "low: Hu 2006 single pass (Fresnel texture, bumped sky, Phong sun)");
     (void)n;
