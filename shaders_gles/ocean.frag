@@ -29,6 +29,7 @@ uniform vec4 slope_bias[4];
 uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
+uniform float sky_run_lod;          // SWELL_RUN_LOD: the run's sky map level
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
@@ -160,7 +161,12 @@ void main()
     // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
     // log2 of it is log2(sigma) + the vertex's log2(2 size du/dzeta).
     float foot = 0.5 * log2(max(var.x, var.y)) + v_extra.y;
-#if defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
+#if defined(SWELL_RUN_LOD) && defined(SWELL_HAS_TEXTURE_LOD)
+    // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint for the run, at a whole
+    // level the renderer computes from the run's mean variance (renderer.c set_run_lods): a
+    // per-pixel LOD is llvmpipe's slow path (A/B, rough 1 km: 6.6-6.9x -> 6.0x the quad).
+    vec3 sky = texture2DLodEXT(sky_tex, uv.zw, sky_run_lod).rgb * sky_map_scale;
+#elif defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
     // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
     // widened in each direction to at least the filter's (a max, where a bias multiplies).
     vec2 gx = dFdx(uv.zw), gy = dFdy(uv.zw);

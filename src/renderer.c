@@ -33,7 +33,7 @@ enum ocean_uniform {
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
     OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
-    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SLOPE_LOD, OU_WC_LOD, OU_SKY_LEVEL_SCALE, OU_COUNT
+    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SLOPE_LOD, OU_WC_LOD, OU_SKY_LEVEL_SCALE, OU_SKY_RUN_LOD, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -41,7 +41,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
     "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
-    "wc_tex1", "wc_tex2", "wc_tex3", "slope_lod", "wc_lod", "sky_level_scale"
+    "wc_tex1", "wc_tex2", "wc_tex3", "slope_lod", "wc_lod", "sky_level_scale", "sky_run_lod"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -95,6 +95,8 @@ struct fs_slot {
     GLuint slope_tex, wc_tex;
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
     float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
+    float level_var[16][2];           /* per mip level: mean within-texel slope variance x, y
+                                       * of the first loop frame (sky_run_lod) */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
 };
@@ -229,6 +231,8 @@ static int whitecaps_constant(const struct swell_table *t)
 /* Fragment-shader slots go to the smallest patterns, largest first; when the units run short
  * the largest patterns go to the vertices (the grid resolves their waves best). High quality
  * also fetches whitecaps for the leading slots that carry them. */
+static void level_variances(const struct swell_table *t, float out[16][2]);
+
 static void assign_patterns(struct renderer *r)
 {
     int order[SWELL_MAX_PATTERNS], n = r->t->patterns, breaks[SWELL_MAX_PATTERNS];
@@ -266,6 +270,31 @@ static void assign_patterns(struct renderer *r)
         sl->pattern = order[n - fs + s];
         sl->slope = tables_find(r->t, TABLE_SLOPE, sl->pattern);
         sl->wc = tables_find(r->t, TABLE_WHITECAP, sl->pattern);
+        if (sl->slope)
+            level_variances(sl->slope, sl->level_var);
+    }
+}
+
+/* Bruneton §4.1 per mip level of a slope table's first loop frame: the mean over its texels of
+ * the within-texel variance <s^2> - <s>^2, x and y: what a pixel fetching that level resolves
+ * below itself. */
+static void level_variances(const struct swell_table *t, float out[16][2])
+{
+    for (int l = 0; l < 16; l++) {
+        out[l][0] = out[l][1] = 0.0f;
+        if (l >= t->levels || t->format != FORMAT_RGBA8)
+            continue;
+        const uint8_t *px = t->data + table_offset(t, l, 0);
+        size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
+        double acc[2] = { 0.0, 0.0 };
+        for (size_t i = 0; i < n; i++)
+            for (int c = 0; c < 2; c++) {
+                double m = t->bias[c] + t->scale[c] * px[4 * i + c] / 255.0;
+                double m2 = t->bias[c + 2] + t->scale[c + 2] * px[4 * i + c + 2] / 255.0;
+                acc[c] += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
+            }
+        out[l][0] = (float)(acc[0] / (double)n);
+        out[l][1] = (float)(acc[1] / (double)n);
     }
 }
 
@@ -999,19 +1028,38 @@ static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
     return key;
 }
 
-/* The LODs of a run from its key. */
-static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key)
+/* The LODs of a run from its key. In high quality also the sky map's (ocean.frag): eq. 27's
+ * footprint 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z), as ocean.vert and ocean.frag take
+ * it per pixel, here for the run: sigma^2 the unresolved variance, the top variance of the
+ * slots not fetched and each fetched slot's mean within-texel variance at its level (the larger
+ * of x and y, as the shader); r_z the reflected view's on a flat sea at the run's middle
+ * distance d (squared: d2), at altitude alt. */
+static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float d2, float alt)
 {
     float sl[SWELL_MAX_PATTERNS] = { 0 }, wl[SWELL_MAX_PATTERNS] = { 0 };
+    float var[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
     if (!r->run_lod)
         return;
-    for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
-        sl[s] = (float)((key >> (4 * s)) & 15u);
-        wl[s] = s < kw ? (float)((key >> (16 + 4 * s)) & 15u) : 0.0f;
+    for (int s = 0; s < r->nfs && s < SWELL_MAX_PATTERNS; s++) {
+        if (s < k) {
+            int lev = (int)((key >> (4 * s)) & 15u);
+            sl[s] = (float)lev;
+            wl[s] = s < kw ? (float)((key >> (16 + 4 * s)) & 15u) : 0.0f;
+            var[0] += r->slot[s].level_var[lev][0];
+            var[1] += r->slot[s].level_var[lev][1];
+        } else {
+            var[0] += r->slot[s].top_slope[2];
+            var[1] += r->slot[s].top_slope[3];
+        }
     }
+    float rz = alt / sqrtf(d2 + alt * alt);
+    float foot = 0.5f * log2f(fmaxf(fmaxf(var[0], var[1]), 1e-4f)) +
+                 log2f(2.0f * (float)r->sky.size / (1.0f + rz));
+    float sky = fminf(fmaxf(floorf(foot + 0.5f), 0.0f), (float)(r->sky.levels - 1));
     const GLint *u = r->ou[VARIANT(k, kw)];
     glUniform4fv(u[OU_SLOPE_LOD], 1, sl);
     glUniform4fv(u[OU_WC_LOD], 1, wl);
+    glUniform1f(u[OU_SKY_RUN_LOD], sky);
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
@@ -1024,6 +1072,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
     float pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
     int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1, run_kw = -1;
     uint32_t run_key = 0;
+    float run_d2_far = 0.0f, run_d2 = 0.0f;   /* the run's first (farthest) and last rows' */
     int high = r->d.quality == QUALITY_HIGH;
     r->draws = r->draws_wc_const = 0;
     for (int row = 0; row <= rows; row++) {
@@ -1045,12 +1094,13 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
         }
         if (k == run_k && kw == run_kw && key == run_key && first == run_first + run_count) {
             run_count += count;
+            run_d2 = d2;
             continue;
         }
         if (run_count > 0) {
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
             set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
-            set_run_lods(r, run_k, run_kw, run_key);
+            set_run_lods(r, run_k, run_kw, run_key, sqrtf(run_d2_far * run_d2), alt);
             glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;
@@ -1061,6 +1111,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
         run_k = k;
         run_kw = kw;
         run_key = key;
+        run_d2_far = run_d2 = d2;
     }
 }
 
@@ -1167,7 +1218,11 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         : r->d.quality == QUALITY_HIGH ? "RGBA8 with a scale, tone-mapped RGBA8 copy for the background"
                                        : "tone-mapped RGBA8 (display space)",
         r->d.quality == QUALITY_HIGH
-            ? shader_has_gradients(&r->gpu->caps)
+            ? r->run_lod
+              ? "high: Ross BRDF sun (eq. 15), sky map filtered at one level per run of rows "
+                "(eq. 27 for the run's mean variance; software rasteriser), effective Fresnel "
+                "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"
+            : shader_has_gradients(&r->gpu->caps)
               ? "high: Ross BRDF sun (eq. 15), sky map filtered with explicit gradients (eq. 27, "
                 "textureGrad), effective Fresnel (eq. 26) on Hu's Fresnel texture, "
                 "refraction (eq. 28), whitecaps (Dupuy eq. 6)"
