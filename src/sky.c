@@ -137,7 +137,8 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
                     hdst[4 * ((size_t)j * m + i) + c] = quantize_half_from_float(rad);
                 }
                 dst[4 * ((size_t)j * m + i) + 3] = (uint8_t)(SKY_LEVEL_ALPHA * (l < 9 ? l : 9));
-                hdst[4 * ((size_t)j * m + i) + 3] = quantize_half_from_float(1.0f);
+                hdst[4 * ((size_t)j * m + i) + 3] =
+                    quantize_half_from_float((float)(SKY_LEVEL_ALPHA * (l < 9 ? l : 9)) / 255.0f);
             }
         if (m > 1)
             for (int j = 0; j < m / 2; j++)

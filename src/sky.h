@@ -28,7 +28,8 @@ struct sky {
     uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed; A holds
                              * the level l as SKY_LEVEL_ALPHA * l: a fetch's A / 255 x
                              * (255 / SKY_LEVEL_ALPHA) is the LOD it sampled (ocean.frag) */
-    uint16_t *half;         /* the same levels as IEEE half radiances (no scale): RGBA16F */
+    uint16_t *half;         /* the same levels as IEEE half radiances (no scale): RGBA16F;
+                             * A as data's, A = SKY_LEVEL_ALPHA l / 255 */
 };
 
 /* Sky radiance towards unit direction dir (z up); below the horizon the horizon's. */

@@ -429,12 +429,20 @@ static void test_tiers(void **state)
         skip();
     surface_camera(&c);
     g_pixel_lod = 1;
-    render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
     render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
+    /* every lower tier: gles2-ext too, whose sky takes gles2-min's own-LOD path from the
+     * half-float map where its context lacks gradients */
+    for (int tier = TIER_GLES2_MIN; tier < best; tier++) {
+        render(tier, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
+        double rmse = rmse_rgb(fx.img, fx.img2);
+        /* gles2-ext shares gles3's highp and vertex-shader grid: 1.38 measured (3.47 while its
+         * half-float sky map's A did not hold the level index) */
+        double limit = tier == TIER_GLES2_MIN ? 4.5 : 2.5;
+        print_message("%s vs %s: RMSE %.2f / 255 (limit %.1f)\n", gpu_tier_name(tier),
+                      gpu_tier_name(best), rmse, limit);
+        assert_true(rmse < limit);
+    }
     g_pixel_lod = 0;
-    double rmse = rmse_rgb(fx.img, fx.img2);
-    print_message("gles2-min vs %s: RMSE %.2f / 255\n", gpu_tier_name(best), rmse);
-    assert_true(rmse < 4.5);
 }
 
 /* Where the device prefers one mip level per run of rows (gpu.c prefer_run_lod: llvmpipe,

@@ -201,7 +201,8 @@ static void test_sky_irradiance(void **state)
             assert_true(fabs(t[c] / 255.0 * s.map_scale - l[c]) < 0.02 * s.map_scale);
     }
     /* the half-float chain holds the same radiances unscaled: every texel of every level within
-     * half of the RGBA8 step (its rounding) plus half precision (2^-11 relative) */
+     * half of the RGBA8 step (its rounding) plus half precision (2^-11 relative); A, the level
+     * index of ocean.frag's own-LOD probe, as the RGBA8 chain's */
     for (int l = 0; l < s.levels; l++) {
         int m = s.size >> l;
         const uint8_t *q = s.data + sky_level_offset(&s, l);
@@ -209,7 +210,7 @@ static void test_sky_irradiance(void **state)
         for (int i = 0; i < m * m; i++)
             for (int c = 0; c < 4; c++) {
                 float v = quantize_float_from_half(h[4 * i + c]);
-                float ref = c == 3 ? 1.0f : q[4 * i + c] / 255.0f * s.map_scale;
+                float ref = c == 3 ? q[4 * i + 3] / 255.0f : q[4 * i + c] / 255.0f * s.map_scale;
                 assert_true(fabsf(v - ref) <= 0.5f / 255.0f * s.map_scale + fabsf(ref) / 2048.0f);
             }
     }

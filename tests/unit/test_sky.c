@@ -12,6 +12,15 @@
 /* Every texel of level l holds A = SKY_LEVEL_ALPHA l, and A / 255 times the scale ocean.frag
  * gets (255 / SKY_LEVEL_ALPHA) gives l back; a trilinear blend of levels l and l + 1 with
  * weight f gives l + f (linear in A). The largest level index stays below 256. */
+/* IEEE half to float, independent of quantize.c (normal numbers and zero suffice here). */
+static float half_to_float(uint16_t h)
+{
+    int e = (h >> 10) & 31, m = h & 1023;
+    if (e == 0 && m == 0)
+        return 0.0f;
+    return (h & 0x8000 ? -1.0f : 1.0f) * ldexpf(1.0f + m / 1024.0f, e - 15);
+}
+
 static void test_level_alpha(void **state)
 {
     struct sky s;
@@ -26,6 +35,11 @@ static void test_level_alpha(void **state)
         const uint8_t *q = s.data + sky_level_offset(&s, l);
         for (int i = 0; i < m * m; i++)
             assert_int_equal(q[4 * i + 3], SKY_LEVEL_ALPHA * l);
+        /* the half-float map (tiers with half-float textures but no gradients use the same
+         * path) holds the same A */
+        const uint16_t *h = s.half + sky_level_offset(&s, l);
+        for (int i = 0; i < m * m; i++)
+            assert_true(fabsf(half_to_float(h[4 * i + 3]) * scale - (float)l) < 0.01f);
         float decoded = q[3] / 255.0f * scale;
         assert_true(fabsf(decoded - (float)l) < 1e-4f);
         if (l + 1 < s.levels) {
