@@ -150,9 +150,13 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
      * high 46 -> 34 ms at 1280x720, gles3). So on software rasterisers that can give an
      * explicit LOD in the fragment shader, the renderer picks it per run of rows from the
      * rows' footprint (renderer.c draw_runs); GPUs keep the per-pixel LOD, free there. */
-    c->prefer_run_lod = software && c->texture_lod &&
-                        ((c->tier == TIER_GLES3 && c->glsl300) || c->glsl100_texture_lod);
+    c->prefer_run_lod = software && gpu_fragment_texture_lod(c);
     return SWELL_OK;
+}
+
+int gpu_fragment_texture_lod(const struct gpu_caps *c)
+{
+    return (c->tier == TIER_GLES3 && c->glsl300) || (c->glsl100_texture_lod && c->texture_lod);
 }
 
 void gpu_shutdown(struct gpu *g)

@@ -54,6 +54,9 @@ struct gpu {
 
 const char *gpu_tier_name(int tier);       /* "gles2-min" */
 int gpu_tier_from_name(const char *name);  /* TIER_* or -1 */
+/* Fragment shaders of this tier can give an explicit LOD: GLSL ES 3.00 (the gles3 tier) or
+ * GL_EXT_shader_texture_lod in #version 100 shaders (shader.c's SWELL_HAS_TEXTURE_LOD). */
+int gpu_fragment_texture_lod(const struct gpu_caps *c);
 
 /* Probe the current context; forced_tier -1 = best available. Fails if forced > available. */
 int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell_err *err);

@@ -19,6 +19,7 @@
 #include <string.h>
 #include "fresnel.h"
 #include "grid.h"
+#include "quantize.h"
 #include "renderer.h"
 #include "shader.h"
 #include "sky.h"
@@ -89,14 +90,17 @@ static const struct shader_attrib sky_attribs[1] = { { "a_ndc", 0 } };
 /* Texture units: 0 Fresnel, 1 sky, then slope/whitecap per fragment pattern slot. */
 enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_PATTERNS = 2 };
 
+#define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
+
 struct fs_slot {
     int pattern;                      /* table pattern index */
     const struct swell_table *slope, *wc;
     GLuint slope_tex, wc_tex;
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
     float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
-    float level_var[16][2];           /* per mip level: mean within-texel slope variance x, y
+    float level_var[SLOT_LEVELS][2];  /* per mip level: mean within-texel slope variance x, y
                                        * of the first loop frame (sky_run_lod) */
+    float log2_density[2];            /* log2 texels per metre of the slope, whitecap table */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
 };
@@ -231,7 +235,7 @@ static int whitecaps_constant(const struct swell_table *t)
 /* Fragment-shader slots go to the smallest patterns, largest first; when the units run short
  * the largest patterns go to the vertices (the grid resolves their waves best). High quality
  * also fetches whitecaps for the leading slots that carry them. */
-static void level_variances(const struct swell_table *t, float out[16][2]);
+static void slot_tables_stats(struct renderer *r, struct fs_slot *sl);
 
 static void assign_patterns(struct renderer *r)
 {
@@ -270,18 +274,29 @@ static void assign_patterns(struct renderer *r)
         sl->pattern = order[n - fs + s];
         sl->slope = tables_find(r->t, TABLE_SLOPE, sl->pattern);
         sl->wc = tables_find(r->t, TABLE_WHITECAP, sl->pattern);
-        if (sl->slope)
-            level_variances(sl->slope, sl->level_var);
+        if (sl->slope && sl->wc)
+            slot_tables_stats(r, sl);
     }
 }
 
-/* Bruneton §4.1 per mip level of a slope table's first loop frame: the mean over its texels of
+static float log2_density(const struct swell_table *t, float size_m)
+{
+    int texels = t->width > t->height ? t->width : t->height;
+    return log2f((float)texels / size_m);
+}
+
+/* What the run LOD (draw_runs) needs of a slot's tables, once: their texels per metre, and per
+ * mip level of the slope table's first loop frame (Bruneton §4.1) the mean over its texels of
  * the within-texel variance <s^2> - <s>^2, x and y: what a pixel fetching that level resolves
  * below itself. */
-static void level_variances(const struct swell_table *t, float out[16][2])
+static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
 {
-    for (int l = 0; l < 16; l++) {
-        out[l][0] = out[l][1] = 0.0f;
+    const struct swell_table *t = sl->slope;
+    float size_m = r->t->pattern[sl->pattern].size_m;
+    sl->log2_density[0] = log2_density(t, size_m);
+    sl->log2_density[1] = log2_density(sl->wc, size_m);
+    for (int l = 0; l < SLOT_LEVELS; l++) {
+        sl->level_var[l][0] = sl->level_var[l][1] = 0.0f;
         if (l >= t->levels || t->format != FORMAT_RGBA8)
             continue;
         const uint8_t *px = t->data + table_offset(t, l, 0);
@@ -289,12 +304,12 @@ static void level_variances(const struct swell_table *t, float out[16][2])
         double acc[2] = { 0.0, 0.0 };
         for (size_t i = 0; i < n; i++)
             for (int c = 0; c < 2; c++) {
-                double m = t->bias[c] + t->scale[c] * px[4 * i + c] / 255.0;
-                double m2 = t->bias[c + 2] + t->scale[c + 2] * px[4 * i + c + 2] / 255.0;
+                double m = quantize_decode(t, c, px[4 * i + c]);
+                double m2 = quantize_decode(t, c + 2, px[4 * i + c + 2]);
                 acc[c] += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
             }
-        out[l][0] = (float)(acc[0] / (double)n);
-        out[l][1] = (float)(acc[1] / (double)n);
+        sl->level_var[l][0] = (float)(acc[0] / (double)n);
+        sl->level_var[l][1] = (float)(acc[1] / (double)n);
     }
 }
 
@@ -995,16 +1010,7 @@ static int slots_needed(const struct renderer *r, float d2, float alt, float pix
  * view the edge is 1.24x farther, 1.55x the footprint (0.63 levels). The LOD is taken at 1.25x
  * the centre's footprint, a third of a level up, between the two. */
 #define RUN_LOD_ROW_MEAN 1.25f
-#define RUN_LOD_MAX 15              /* 4 bits per table in the run key */
-
-/* log2 of texels per metre of slot s's slope (wc = 0) or whitecap (wc = 1) table. */
-static float slot_log2_density(const struct renderer *r, int s, int wc)
-{
-    const struct fs_slot *sl = &r->slot[s];
-    const struct swell_table *t = wc ? sl->wc : sl->slope;
-    int texels = t->width > t->height ? t->width : t->height;
-    return log2f((float)texels / r->t->pattern[sl->pattern].size_m);
-}
+#define RUN_LOD_MAX (SLOT_LEVELS - 1)
 
 static int nearest_level(float log2_foot, float log2_density)
 {
@@ -1021,9 +1027,9 @@ static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
         return 0;
     float lf = log2f(foot * RUN_LOD_ROW_MEAN);
     for (int s = 0; s < k; s++) {
-        key |= (uint32_t)nearest_level(lf, slot_log2_density(r, s, 0)) << (4 * s);
+        key |= (uint32_t)nearest_level(lf, r->slot[s].log2_density[0]) << (4 * s);
         if (s < kw)
-            key |= (uint32_t)nearest_level(lf, slot_log2_density(r, s, 1)) << (16 + 4 * s);
+            key |= (uint32_t)nearest_level(lf, r->slot[s].log2_density[1]) << (16 + 4 * s);
     }
     return key;
 }

@@ -298,7 +298,7 @@ static int emit_header(struct assembly *a, const struct shader_desc *d, GLenum s
     sb_printf(b, "#define %s 1\n", tier_macros[tier]);
     if (fragment ? (es3 || (c->glsl100_derivatives && c->derivatives)) : 0)
         sb_printf(b, "#define SWELL_HAS_DERIVATIVES 1\n");
-    if (fragment ? (es3 || (c->glsl100_texture_lod && c->texture_lod)) : 0)
+    if (fragment && gpu_fragment_texture_lod(c))
         sb_printf(b, "#define SWELL_HAS_TEXTURE_LOD 1\n");
     if (c->vertex_texture_units > 0)
         sb_printf(b, "#define SWELL_HAS_VTF 1\n");

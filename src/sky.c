@@ -129,6 +129,7 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
         int m = size >> l;
         uint8_t *dst = out->data + sky_level_offset(out, l);
         uint16_t *hdst = out->half + sky_level_offset(out, l);
+        int alpha = SKY_LEVEL_ALPHA * (l < 9 ? l : 9);   /* the level's index (sky.h) */
         for (int j = 0; j < m; j++)
             for (int i = 0; i < m; i++) {
                 for (int c = 0; c < 3; c++) {
@@ -136,9 +137,8 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
                     dst[4 * ((size_t)j * m + i) + c] = (uint8_t)(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f + 0.5f);
                     hdst[4 * ((size_t)j * m + i) + c] = quantize_half_from_float(rad);
                 }
-                dst[4 * ((size_t)j * m + i) + 3] = (uint8_t)(SKY_LEVEL_ALPHA * (l < 9 ? l : 9));
-                hdst[4 * ((size_t)j * m + i) + 3] =
-                    quantize_half_from_float((float)(SKY_LEVEL_ALPHA * (l < 9 ? l : 9)) / 255.0f);
+                dst[4 * ((size_t)j * m + i) + 3] = (uint8_t)alpha;
+                hdst[4 * ((size_t)j * m + i) + 3] = quantize_half_from_float((float)alpha / 255.0f);
             }
         if (m > 1)
             for (int j = 0; j < m / 2; j++)
