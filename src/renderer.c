@@ -59,6 +59,12 @@ static const char *const sky_uniform_names[SU_COUNT] = {
  * patch by this factor (LOD >= log2 N + 0.3: trilinear reads the 1x1 level alone), a margin for
  * the footprint estimate from the rows' vertices. */
 #define DROP_FOOTPRINT 1.25f
+/* ...or earlier, at the LOD from which the mip means of its slope table hold less than this
+ * fraction of the patch's slope variance (slot_tables_stats): a pattern's band spans a few
+ * octaves of wavenumber above its patch's fundamental, so well before the 1x1 level the means
+ * are nearly flat and the variance is all within the texels (Bruneton §4.1), which the patch's
+ * constants carry as well. */
+#define DROP_RESOLVED 0.02f
 /* A pattern's whitecaps are dropped earlier, once its patch covers fewer than 1 / this many
  * pixels along the view: there a pixel averages (N / 8)^2 or more of the table's texels, whose
  * k moments (Dupuy eq. 7-8) are then close to the patch's, so the coverage of eq. 6 from the
@@ -99,8 +105,10 @@ struct fs_slot {
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
     float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
     float level_var[SLOT_LEVELS][2];  /* per mip level: mean within-texel slope variance x, y
-                                       * of the first loop frame (sky_run_lod) */
+                                       * of the first loop frame (sky_run_lod, drop_lod) */
     float log2_density[2];            /* log2 texels per metre of the slope, whitecap table */
+    float drop_lod;                   /* from this LOD up the slope table resolves too little
+                                       * to fetch (DROP_RESOLVED) */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
 };
@@ -144,6 +152,7 @@ struct renderer {
     int run_lod;                      /* pattern fetches at one LOD per run (gpu.c) */
     int draws;                        /* sea draws in the last frame */
     int draws_wc_const;               /* ...with whitecaps of a fetched slot as constants */
+    int draws_resolved_drop;          /* ...dropping a slope slot by DROP_RESOLVED */
 };
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
@@ -274,6 +283,7 @@ static void assign_patterns(struct renderer *r)
         sl->pattern = order[n - fs + s];
         sl->slope = tables_find(r->t, TABLE_SLOPE, sl->pattern);
         sl->wc = tables_find(r->t, TABLE_WHITECAP, sl->pattern);
+        sl->drop_lod = (float)SLOT_LEVELS;
         if (sl->slope && sl->wc)
             slot_tables_stats(r, sl);
     }
@@ -310,6 +320,15 @@ static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
             }
         sl->level_var[l][0] = (float)(acc[0] / (double)n);
         sl->level_var[l][1] = (float)(acc[1] / (double)n);
+    }
+    /* The fraction resolved by the mip means at level l: 1 - within(l) / within(top). */
+    int top = (t->levels < SLOT_LEVELS ? t->levels : SLOT_LEVELS) - 1;
+    float total = sl->level_var[top][0] + sl->level_var[top][1];
+    sl->drop_lod = (float)SLOT_LEVELS;
+    for (int l = top; l >= 0 && total > 0.0f; l--) {
+        if (total - (sl->level_var[l][0] + sl->level_var[l][1]) >= DROP_RESOLVED * total)
+            break;
+        sl->drop_lod = (float)l;
     }
 }
 
@@ -982,18 +1001,21 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
 /* Slots fetched for a row whose nearest vertex is at squared horizontal distance d2: those whose
  * patch is still larger than drop x the pixel footprint there. On a plane seen from altitude a
  * at distance d the footprint along the view (the larger axis, which sets the LOD) is
- * d^2 / a times the pixel's angle. Slots are largest first, so the answer is a count. */
+ * d^2 / a times the pixel's angle. With resolved, also only those whose mip means at the LOD
+ * there still vary (drop_lod). Slots are largest first, so the answer is a count. */
 static float row_footprint(float d2, float alt, float pix_angle)
 {
     return (d2 + alt * alt) / alt * pix_angle;
 }
 
 static int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle,
-                        float drop)
+                        float drop, int resolved)
 {
-    float foot = row_footprint(d2, alt, pix_angle);
+    float foot = row_footprint(d2, alt, pix_angle), lf = log2f(foot);
     int k = 0;
-    while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * drop > foot)
+    while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * drop > foot &&
+           (!resolved || r->d.keep_resolved ||
+            lf + r->slot[k].log2_density[0] < r->slot[k].drop_lod))
         k++;
     return k;
 }
@@ -1077,12 +1099,13 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
     float fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * (float)(M_PI / 180.0);
     float pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
     int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1, run_kw = -1;
+    int run_early = 0;
     uint32_t run_key = 0;
     float run_d2_far = 0.0f, run_d2 = 0.0f;   /* the run's first (farthest) and last rows' */
     int high = r->d.quality == QUALITY_HIGH;
-    r->draws = r->draws_wc_const = 0;
+    r->draws = r->draws_wc_const = r->draws_resolved_drop = 0;
     for (int row = 0; row <= rows; row++) {
-        int first = 0, count = 0, k = -2, kw = -2;
+        int first = 0, count = 0, k = -2, kw = -2, early = 0;
         uint32_t key = 0;
         float d2 = 0.0f;
         if (row < rows) {
@@ -1091,8 +1114,9 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
                 k = r->nfs;
                 kw = high ? r->nwc : 0;
             } else {
-                k = slots_needed(r, d2, alt, pix, DROP_FOOTPRINT);
-                kw = high ? slots_needed(r, d2, alt, pix, WC_DROP_FOOTPRINT) : 0;
+                k = slots_needed(r, d2, alt, pix, DROP_FOOTPRINT, 1);
+                early = k < slots_needed(r, d2, alt, pix, DROP_FOOTPRINT, 0);
+                kw = high ? slots_needed(r, d2, alt, pix, WC_DROP_FOOTPRINT, 0) : 0;
                 kw = kw < r->nwc ? kw : r->nwc;
                 kw = kw < k ? kw : k;
             }
@@ -1101,6 +1125,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
         if (k == run_k && kw == run_kw && key == run_key && first == run_first + run_count) {
             run_count += count;
             run_d2 = d2;
+            run_early |= early;
             continue;
         }
         if (run_count > 0) {
@@ -1111,11 +1136,13 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;
             r->draws_wc_const += run_kw < (run_k < r->nwc ? run_k : r->nwc);
+            r->draws_resolved_drop += run_early;
         }
         run_first = first;
         run_count = count;
         run_k = k;
         run_kw = kw;
+        run_early = early;
         run_key = key;
         run_d2_far = run_d2 = d2;
     }
@@ -1192,6 +1219,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     out->triangles = grid_index_count(r->grid) / 3;
     out->sea_draws = r->draws;
     out->sea_draws_wc_const = r->draws_wc_const;
+    out->sea_draws_resolved_drop = r->draws_resolved_drop;
     out->run_lod = r->run_lod;
     out->vtf = r->vtf;
 }
@@ -1203,7 +1231,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "geometry: %s, %s, %d vertices\n"
         "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x)\n"
         "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
-        "fetches: per run of rows only the patterns not fully filtered there; whitecaps of %d "
+        "fetches: per run of rows only the patterns whose mip means still vary there; whitecaps of %d "
         "pattern(s); %s\n"
         "fragment precision: %s\n"
         "sky map: %s\n"

@@ -33,6 +33,8 @@ struct renderer_desc {
     int pixel_lod;                      /* 1: per-pixel texture LOD even where the device
                                          * prefers one LOD per run (gpu.c prefer_run_lod;
                                          * tests compare the two) */
+    int keep_resolved;                  /* 1: drop a pattern only at its 1x1 level, not where
+                                         * its mip means are nearly flat (tests compare) */
 };
 
 struct renderer_stats {
@@ -42,6 +44,8 @@ struct renderer_stats {
     int sea_draws;                      /* runs of rows drawn in the last frame (renderer.c) */
     int sea_draws_wc_const;             /* ...of them, runs where a fetched slot's whitecaps
                                          * entered as its patch's constants */
+    int sea_draws_resolved_drop;        /* ...of them, runs dropping a pattern whose mip means
+                                         * are nearly flat there, before its 1x1 level */
     int run_lod;                        /* pattern tables fetched at one LOD per run */
     int vtf;                            /* grid built and displaced in the vertex shader */
 };

@@ -125,9 +125,11 @@ static float g_move_sun[2];  /* when [0] > 0: renderer_set_sun(elev, azim) after
 static int g_cpu_geometry;   /* renderer_desc.cpu_geometry */
 static int g_fetch_all;      /* renderer_desc.fetch_all */
 static int g_pixel_lod;      /* renderer_desc.pixel_lod */
+static int g_keep_resolved;  /* renderer_desc.keep_resolved */
 static int g_run_lod_used;   /* renderer_stats.run_lod of the last render */
 static int g_draws;          /* renderer_stats.sea_draws of the last render */
 static int g_draws_wc_const; /* renderer_stats.sea_draws_wc_const of the last render */
+static int g_draws_resolved_drop; /* renderer_stats.sea_draws_resolved_drop of the last render */
 static int g_vtf_used;       /* renderer_stats.vtf of the last render */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
@@ -150,6 +152,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.cpu_geometry = g_cpu_geometry;
     d.fetch_all = g_fetch_all;
     d.pixel_lod = g_pixel_lod;
+    d.keep_resolved = g_keep_resolved;
     rc = renderer_create(&d, &r, &err);
     if (rc)
         fail_msg("renderer_create: %s", err.msg);
@@ -169,6 +172,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     renderer_get_stats(r, &st);
     g_draws = st.sea_draws;
     g_draws_wc_const = st.sea_draws_wc_const;
+    g_draws_resolved_drop = st.sea_draws_resolved_drop;
     g_run_lod_used = st.run_lod;
     if (ms)
         *ms = (b.tv_sec - a.tv_sec) * 1e3 + (b.tv_nsec - a.tv_nsec) * 1e-6;
@@ -537,6 +541,55 @@ static void test_fetch_runs(void **state)
     }
 }
 
+/* A baked spectrum's pattern spans a few octaves above its patch's fundamental, so its mip
+ * means are nearly flat well before the 1x1 level (renderer.c DROP_RESOLVED): runs drop it
+ * there, and the image stays that of runs that keep it to its 1x1 level. Every tier's LOD
+ * path: gles2-min (mediump, per-pixel LOD), gles3 with the per-pixel LOD of GPUs and with one
+ * level per run (llvmpipe). (Every pattern fetched everywhere is no reference here: at 1 km
+ * the small patterns' whitecaps alias at their 2x2 levels, and in mediump their coordinates
+ * grow to thousands of patches at the horizon, which fp16 resolves to whole patches.) */
+static void test_resolved_drop(void **state)
+{
+    struct seastate ss = { 0 };
+    struct swell_tables baked, synthetic = fx.tables;
+    struct swell_err err = { 0 };
+    struct camera c;
+    static const struct { int tier, pixel_lod; const char *name; } cases[3] = {
+        { TIER_GLES2_MIN, 0, "gles2-min" }, { TIER_GLES3, 1, "gles3, per-pixel LOD" },
+        { TIER_GLES3, 0, "gles3, run LOD" }
+    };
+    (void)state;
+    ss.budget_bytes = SWELL_BUDGET_DEFAULT;
+    ss.wind_speed_mps = 15.0f;
+    if (swell_bake(&ss, NULL, &baked, &err))
+        fail_msg("swell_bake: %s", err.msg);
+    fx.tables = baked;
+    camera_defaults(&c);
+    c.pos[2] = 1000.0;
+    c.pitch_deg = -20.0f;
+    for (int ci = 0; ci < 3; ci++)
+        for (int q = 0; q < QUALITY_COUNT; q++) {
+            int draws;
+            g_pixel_lod = cases[ci].pixel_lod;
+            g_keep_resolved = 1;
+            render(cases[ci].tier, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
+            assert_int_equal(g_draws_resolved_drop, 0);
+            draws = g_draws;
+            g_keep_resolved = 0;
+            render(cases[ci].tier, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
+            g_pixel_lod = 0;
+            double rmse = rmse_rgb(fx.img, fx.img2);
+            print_message("baked, %s, %s, 1 km: %d runs (%d dropping a slot by its resolved "
+                          "variance) vs %d runs keeping slots to their 1x1 level: RMSE %.3f / "
+                          "255\n", cases[ci].name, render_quality_name(q), g_draws,
+                          g_draws_resolved_drop, draws, rmse);
+            assert_true(g_draws_resolved_drop > 0);
+            assert_true(rmse < 1.0);
+        }
+    fx.tables = synthetic;
+    tables_destroy(&baked);
+}
+
 int main(void)
 {
     struct platform_desc pd = { 0 };
@@ -566,6 +619,7 @@ int main(void)
         cmocka_unit_test(test_tiers),
         cmocka_unit_test(test_vtf_geometry),
         cmocka_unit_test(test_fetch_runs),
+        cmocka_unit_test(test_resolved_drop),
         cmocka_unit_test(test_run_lod),
         cmocka_unit_test(test_set_sun),
     };
