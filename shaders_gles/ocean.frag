@@ -5,10 +5,12 @@
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
 // FS_WHITECAPS <= FS_PATTERNS: leading slots whose patterns carry whitecaps (bake.c).
-// SWELL_RUN_LOD (software rasterisers with fragment texture LOD, gpu.c): the pattern tables are
-// fetched at one whole mip level per draw, the one nearest the LOD the hardware would pick at
-// the run's rows (renderer.c draw_runs); the Fresnel texture, a smooth function of the bumped
-// view, and in low quality the sky map, at level 0. Elsewhere the per-pixel implicit LOD.
+// SWELL_RUN_LOD (software rasterisers, gpu.c): the pattern tables are fetched at one whole mip
+// level per draw, the one nearest the LOD the hardware would pick at the run's rows
+// (renderer.c draw_runs); the Fresnel texture, a smooth function of the bumped view, and in
+// low quality the sky map, at level 0. With fragment texture LOD by texture2DLodEXT; without
+// (gles2-min), by texture2D of the level's own texture, which has no mips (renderer.c
+// chain_tex). Elsewhere the per-pixel implicit LOD.
 //
 // Per pixel only what depends on the pixel's own slope moments is evaluated: ocean.vert
 // linearises the rest about the vertex's mean slope s0 (see there), so the pixel adds the
@@ -161,11 +163,15 @@ void main()
     // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
     // log2 of it is log2(sigma) + the vertex's log2(2 size du/dzeta).
     float foot = 0.5 * log2(max(var.x, var.y)) + v_extra.y;
-#if defined(SWELL_RUN_LOD) && defined(SWELL_HAS_TEXTURE_LOD)
+#if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint for the run, at a whole
     // level the renderer computes from the run's mean variance (renderer.c set_run_lods): a
     // per-pixel LOD is llvmpipe's slow path (A/B, rough 1 km: 6.6-6.9x -> 6.0x the quad).
+#ifdef SWELL_HAS_TEXTURE_LOD
     vec3 sky = texture2DLodEXT(sky_tex, uv.zw, sky_run_lod).rgb * sky_map_scale;
+#else
+    vec3 sky = texture2D(sky_tex, uv.zw).rgb * sky_map_scale;   // the level's own texture
+#endif
 #elif defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
     // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
     // widened in each direction to at least the filter's (a max, where a bias multiplies).

@@ -147,10 +147,11 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
     /* llvmpipe computes the implicit LOD per 2x2 quad, and where the quads of one SIMD vector
      * differ it fetches each from its own mip level: measured here, a slope fetch at one
      * uniform LOD per draw made the whole 1 km frame 20-30 % faster (low 26.7 -> 21.8 ms,
-     * high 46 -> 34 ms at 1280x720, gles3). So on software rasterisers that can give an
-     * explicit LOD in the fragment shader, the renderer picks it per run of rows from the
-     * rows' footprint (renderer.c draw_runs); GPUs keep the per-pixel LOD, free there. */
-    c->prefer_run_lod = software && gpu_fragment_texture_lod(c);
+     * high 46 -> 34 ms at 1280x720, gles3). So on software rasterisers the renderer picks
+     * the level per run of rows from the rows' footprint (renderer.c draw_runs): an explicit
+     * LOD in the fragment shader where the tier has one, else per-level textures without
+     * mips (renderer.c chain_tex); GPUs keep the per-pixel LOD, free there. */
+    c->prefer_run_lod = software;
     return SWELL_OK;
 }
 

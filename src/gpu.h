@@ -29,8 +29,8 @@ struct gpu_caps {
     int context_major;          /* GL_VERSION major of the context (not the tier) */
     int fragment_highp;         /* highp float in fragment shaders (never on GLES2_MIN) */
     int prefer_highp;           /* fragment shaders use highp: software rasteriser (gpu.c) */
-    int prefer_run_lod;         /* pattern fetches at one explicit LOD per draw: software
-                                 * rasteriser with fragment texture LOD (gpu.c) */
+    int prefer_run_lod;         /* pattern fetches at one whole level per draw: software
+                                 * rasteriser (gpu.c) */
     int glsl100_derivatives;    /* #version 100 shaders may enable GL_OES_standard_derivatives */
     int glsl100_texture_lod;    /* #version 100 shaders may enable GL_EXT_shader_texture_lod */
     char vendor[64], renderer[128], version[128];

@@ -98,10 +98,19 @@ enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_PATTERNS = 2 };
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
 
+/* A table with mips on the GPU: one texture holding the chain or, with level_tex, one texture
+ * per level, each without mips. Binding level l's texture is how a GLES 2 fragment shader
+ * without texture LOD fetches at an explicit whole level (GLES 2 has no TEXTURE_BASE_LEVEL),
+ * and llvmpipe filters a texture without mips on its fast path, with no LOD per pixel. */
+struct chain_tex {
+    GLuint tex[SLOT_LEVELS];          /* [0] the chain, or [l] level l */
+    int levels;                       /* levels held as textures of their own; 0: one chain */
+};
+
 struct fs_slot {
     int pattern;                      /* table pattern index */
     const struct swell_table *slope, *wc;
-    GLuint slope_tex, wc_tex;
+    struct chain_tex slope_tex, wc_tex;
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
     float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
     float level_var[SLOT_LEVELS][2];  /* per mip level: mean within-texel slope variance x, y
@@ -134,8 +143,9 @@ struct renderer {
     int disp_ab[SWELL_MAX_PATTERNS][2];       /* this frame's a and b: indices into the pair */
     float disp_w[SWELL_MAX_PATTERNS];
     struct grid_projection proj;
-    GLuint fresnel_tex, sky_tex, vbo, ibo, quad_vbo;
-    GLuint sky_display_tex;           /* the sky map tone-mapped: background, low quality */
+    GLuint fresnel_tex, vbo, ibo, quad_vbo;
+    struct chain_tex sky_tex;
+    struct chain_tex sky_display_tex; /* the sky map tone-mapped: background, low quality */
     int sky_half;                     /* sky_tex holds half-float radiances (scale 1) */
     GLuint fresnel_sun_tex;           /* low: A Fresnel, R Hu's Phong term for this sun */
     const struct swell_table *fresnel;
@@ -150,6 +160,7 @@ struct renderer {
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
     int run_lod;                      /* pattern fetches at one LOD per run (gpu.c) */
+    int level_tex;                    /* ...by binding per-level textures (chain_tex) */
     int draws;                        /* sea draws in the last frame */
     int draws_wc_const;               /* ...with whitecaps of a fetched slot as constants */
     int draws_resolved_drop;          /* ...dropping a slope slot by DROP_RESOLVED */
@@ -196,6 +207,42 @@ static void resolve(struct renderer_desc *d)
         d->sun_elev_deg = 30.0f;
 }
 
+/* A table of levels mips (levels 1: none) as one texture, or with level_tex one per level. */
+static int chain_create(struct renderer *r, int w, int h, int levels, int format, int repeat,
+                        const char *what, struct chain_tex *c, struct swell_err *err)
+{
+    int rc;
+    memset(c, 0, sizeof(*c));
+    if (!r->level_tex || levels <= 1)
+        return gpu_texture_create(r->gpu, w, h, levels, format, repeat, what, &c->tex[0], err);
+    if (levels > SLOT_LEVELS)
+        return swell_fail(err, SWELL_E_ARG, "%s: %d mip levels, at most %d", what, levels,
+                          SLOT_LEVELS);
+    for (int l = 0; l < levels; l++) {
+        int lw = w >> l > 0 ? w >> l : 1, lh = h >> l > 0 ? h >> l : 1;
+        if ((rc = gpu_texture_create(r->gpu, lw, lh, 1, format, repeat, what, &c->tex[l], err)))
+            return rc;
+        c->levels = l + 1;
+    }
+    return 0;
+}
+
+static void chain_destroy(struct renderer *r, struct chain_tex *c)
+{
+    for (int l = SLOT_LEVELS - 1; l >= 0; l--)
+        gpu_texture_destroy(r->gpu, &c->tex[l]);
+    c->levels = 0;
+}
+
+/* The texture to bind for fetches at level l (the chain itself, which the shader or the
+ * hardware takes its level from, or level l's own). */
+static GLuint chain_at(const struct chain_tex *c, int l)
+{
+    if (c->levels == 0)
+        return c->tex[0];
+    return c->tex[l < 0 ? 0 : l < c->levels ? l : c->levels - 1];
+}
+
 void renderer_destroy(struct renderer *r)
 {
     if (!r)
@@ -203,8 +250,8 @@ void renderer_destroy(struct renderer *r)
     for (int s = SWELL_MAX_PATTERNS - 1; s >= 0; s--) {
         gpu_texture_destroy(r->gpu, &r->disp_tex[s][1]);
         gpu_texture_destroy(r->gpu, &r->disp_tex[s][0]);
-        gpu_texture_destroy(r->gpu, &r->slot[s].wc_tex);
-        gpu_texture_destroy(r->gpu, &r->slot[s].slope_tex);
+        chain_destroy(r, &r->slot[s].wc_tex);
+        chain_destroy(r, &r->slot[s].slope_tex);
         free(r->slot[s].wc_b);
         free(r->slot[s].slope_b);
     }
@@ -214,8 +261,8 @@ void renderer_destroy(struct renderer *r)
     gpu_buffer_destroy(r->gpu, &r->ibo);
     gpu_buffer_destroy(r->gpu, &r->vbo);
     gpu_texture_destroy(r->gpu, &r->fresnel_sun_tex);
-    gpu_texture_destroy(r->gpu, &r->sky_display_tex);
-    gpu_texture_destroy(r->gpu, &r->sky_tex);
+    chain_destroy(r, &r->sky_display_tex);
+    chain_destroy(r, &r->sky_tex);
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
     free(r->scratch);
     shader_program_destroy(&r->sunp);
@@ -361,26 +408,36 @@ static int choose_vtf(const struct renderer *r)
 }
 
 /* A texture's mip chain, level-major and tightly packed: RGBA8, or with type the GL half-float
- * type, RGBA16F (upload_chain_typed). */
-static int upload_chain_typed(GLuint tex, int w, int h, int levels, const void *data, GLenum type,
-                              const char *what, struct swell_err *err)
+ * type, RGBA16F (upload_chain_typed); into the chain's texture, or each level's own. */
+static int upload_chain_typed(const struct chain_tex *c, int w, int h, int levels,
+                              const void *data, GLenum type, const char *what,
+                              struct swell_err *err)
 {
     size_t off = 0, texel = type == GL_UNSIGNED_BYTE ? 4 : 8;
-    glBindTexture(GL_TEXTURE_2D, tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int l = 0; l < levels; l++) {
         int lw = w >> l > 0 ? w >> l : 1, lh = h >> l > 0 ? h >> l : 1;
-        glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, lw, lh, GL_RGBA, type,
+        if (l == 0 || c->levels)
+            glBindTexture(GL_TEXTURE_2D, chain_at(c, l));
+        glTexSubImage2D(GL_TEXTURE_2D, c->levels ? 0 : l, 0, 0, lw, lh, GL_RGBA, type,
                         (const uint8_t *)data + off);
         off += texel * (size_t)lw * lh;
     }
     return gpu_check(what, err);
 }
 
-static int upload_chain(GLuint tex, int w, int h, int levels, const uint8_t *data,
-                        const char *what, struct swell_err *err)
+static int upload_chain(const struct chain_tex *c, int w, int h, int levels,
+                        const uint8_t *data, const char *what, struct swell_err *err)
 {
-    return upload_chain_typed(tex, w, h, levels, data, GL_UNSIGNED_BYTE, what, err);
+    return upload_chain_typed(c, w, h, levels, data, GL_UNSIGNED_BYTE, what, err);
+}
+
+/* A texture without mips (levels 1 of upload_chain). */
+static int upload_single(GLuint tex, int w, int h, const uint8_t *data, const char *what,
+                         struct swell_err *err)
+{
+    struct chain_tex c = { { tex }, 0 };
+    return upload_chain(&c, w, h, 1, data, what, err);
 }
 
 /* The HDR sky map of high quality: half-float radiances where the tier has half-float
@@ -388,9 +445,9 @@ static int upload_chain(GLuint tex, int w, int h, int levels, const uint8_t *dat
 static int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err *err)
 {
     if (r->sky_half)
-        return upload_chain_typed(r->sky_tex, sk->size, sk->size, sk->levels, sk->half,
+        return upload_chain_typed(&r->sky_tex, sk->size, sk->size, sk->levels, sk->half,
                                   gpu_half_type(r->gpu), "renderer: sky upload (half)", err);
-    return upload_chain(r->sky_tex, sk->size, sk->size, sk->levels, sk->data,
+    return upload_chain(&r->sky_tex, sk->size, sk->size, sk->levels, sk->data,
                         "renderer: sky upload", err);
 }
 
@@ -416,7 +473,7 @@ static int upload_sky_display(struct renderer *r, struct swell_err *err)
     float k = r->exposure * r->sky.map_scale / 255.0f;
     for (size_t i = 0; i < n; i++)
         r->scratch[i] = (i & 3) == 3 ? 255 : unorm8(tone_map_1(k * (float)r->sky.data[i]));
-    return upload_chain(r->sky_display_tex, r->sky.size, r->sky.size, r->sky.levels, r->scratch,
+    return upload_chain(&r->sky_display_tex, r->sky.size, r->sky.size, r->sky.levels, r->scratch,
                         "renderer: display sky upload", err);
 }
 
@@ -449,8 +506,8 @@ static int upload_fresnel_sun(struct renderer *r, struct swell_err *err)
         r->scratch[4 * i + 2] = 0;
         r->scratch[4 * i + 3] = px[3];
     }
-    return upload_chain(r->fresnel_sun_tex, fr->width, fr->height, 1, r->scratch,
-                        "renderer: Fresnel-sun upload", err);
+    return upload_single(r->fresnel_sun_tex, fr->width, fr->height, r->scratch,
+                         "renderer: Fresnel-sun upload", err);
 }
 
 static int create_disp_textures(struct renderer *r, struct swell_err *err)
@@ -485,9 +542,9 @@ static void stream_disp(struct renderer *r, double t_s)
                 /* replace the one the other wanted frame is not in */
                 slot = (have[0] == want[1 - k]) ? 1 : 0;
                 have[slot] = want[k];
-                upload_chain(r->disp_tex[i][slot], d->width, d->height, 1,
-                             d->data + table_offset(d, 0, want[k]), "renderer: displacement",
-                             NULL);
+                upload_single(r->disp_tex[i][slot], d->width, d->height,
+                              d->data + table_offset(d, 0, want[k]), "renderer: displacement",
+                              NULL);
             }
             r->disp_ab[i][k] = slot;
         }
@@ -544,8 +601,8 @@ static int create_textures(struct renderer *r, struct swell_err *err)
     if (r->d.quality == QUALITY_HIGH &&
         ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
                                   "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
-         (rc = upload_chain(r->fresnel_tex, fr->width, fr->height, 1, fr->data,
-                            "renderer: Fresnel upload", err))))
+         (rc = upload_single(r->fresnel_tex, fr->width, fr->height, fr->data,
+                             "renderer: Fresnel upload", err))))
         return rc;
     r->fresnel = fr;
     if ((rc = sky_bake(r->d.sun_elev_deg, r->d.sun_azim_deg, SKY_MAP_SIZE, &r->sky, err)))
@@ -556,15 +613,15 @@ static int create_textures(struct renderer *r, struct swell_err *err)
     if (!(r->scratch = malloc(scratch)))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for derived textures");
     update_exposure(r);
-    if ((rc = gpu_texture_create(r->gpu, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
-                                 "renderer: display sky map", &r->sky_display_tex, err)) ||
+    if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
+                           "renderer: display sky map", &r->sky_display_tex, err)) ||
         (rc = upload_sky_display(r, err)))
         return rc;
     if (r->d.quality == QUALITY_HIGH) {
         r->sky_half = r->gpu->caps.half_float;
-        if ((rc = gpu_texture_create(r->gpu, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels,
-                                     r->sky_half ? FORMAT_RGBA16F : FORMAT_RGBA8, 0,
-                                     "renderer: sky map", &r->sky_tex, err)) ||
+        if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels,
+                               r->sky_half ? FORMAT_RGBA16F : FORMAT_RGBA8, 0,
+                               "renderer: sky map", &r->sky_tex, err)) ||
             (rc = upload_sky(r, &r->sky, err)))
             return rc;
     } else if ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
@@ -581,17 +638,16 @@ static int create_textures(struct renderer *r, struct swell_err *err)
             sl->wc->format != FORMAT_RGBA8)
             return swell_fail(err, SWELL_E_FORMAT, "renderer: pattern %d lacks rgba8 slope or "
                               "whitecap tables; re-bake for the gles2-min format", sl->pattern);
-        if ((rc = gpu_texture_create(r->gpu, sl->slope->width, sl->slope->height,
-                                     sl->slope->levels, FORMAT_RGBA8, 1, "renderer: slope",
-                                     &sl->slope_tex, err)))
+        if ((rc = chain_create(r, sl->slope->width, sl->slope->height, sl->slope->levels,
+                               FORMAT_RGBA8, 1, "renderer: slope", &sl->slope_tex, err)))
             return rc;
         if (!(sl->slope_b = malloc(stream_blended_bytes(sl->slope))))
             return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory to blend slopes");
         r->stream_bytes += stream_blended_bytes(sl->slope);
         if (s >= r->nwc)
             continue;
-        if ((rc = gpu_texture_create(r->gpu, sl->wc->width, sl->wc->height, sl->wc->levels,
-                                     FORMAT_RGBA8, 1, "renderer: whitecap", &sl->wc_tex, err)))
+        if ((rc = chain_create(r, sl->wc->width, sl->wc->height, sl->wc->levels, FORMAT_RGBA8,
+                               1, "renderer: whitecap", &sl->wc_tex, err)))
             return rc;
         if (!(sl->wc_b = malloc(stream_blended_bytes(sl->wc))))
             return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory to blend whitecaps");
@@ -746,6 +802,7 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     assign_patterns(r);
     r->vtf = choose_vtf(r);
     r->run_lod = r->gpu->caps.prefer_run_lod && !r->d.pixel_lod;
+    r->level_tex = r->run_lod && !gpu_fragment_texture_lod(&r->gpu->caps);
     gd.tables = r->t;
     gd.kind = r->d.geometry;
     gd.w = r->d.grid_w;
@@ -773,7 +830,7 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     int rc = sky_bake(elev_deg, azim_deg, SKY_MAP_SIZE, &fresh, err);
     if (rc)
         return rc;
-    if (r->sky_tex && (rc = upload_sky(r, &fresh, err))) {
+    if (r->sky_tex.tex[0] && (rc = upload_sky(r, &fresh, err))) {
         sky_destroy(&fresh);
         return rc;
     }
@@ -807,7 +864,7 @@ static void slot_constants(struct fs_slot *sl)
     sl->top_slope[1] = m[1];
     sl->top_slope[2] = fmaxf(m[2] - m[0] * m[0], 0.0f);
     sl->top_slope[3] = fmaxf(m[3] - m[1] * m[1], 0.0f);
-    top_texel(sl->wc, sl->wc_tex ? sl->wc_b : NULL, m);
+    top_texel(sl->wc, sl->wc_tex.tex[0] ? sl->wc_b : NULL, m);
     sl->top_k[0] = m[0];
     sl->top_k[1] = fmaxf(m[1] - m[0] * m[0], 0.0f);
     sl->top_k[2] = 1.0f - fminf(fmaxf(m[2], 0.0f), 1.0f);
@@ -824,11 +881,11 @@ static void stream_textures(struct renderer *r, double t_s)
         sl->phase = ph;
         sl->phase_valid = 1;
         stream_blend(sl->slope, &ph, sl->slope_b);
-        upload_chain(sl->slope_tex, sl->slope->width, sl->slope->height, sl->slope->levels,
+        upload_chain(&sl->slope_tex, sl->slope->width, sl->slope->height, sl->slope->levels,
                      sl->slope_b, "renderer: slope stream", NULL);
-        if (sl->wc_tex) {
+        if (sl->wc_tex.tex[0]) {
             stream_blend(sl->wc, &ph, sl->wc_b);
-            upload_chain(sl->wc_tex, sl->wc->width, sl->wc->height, sl->wc->levels, sl->wc_b,
+            upload_chain(&sl->wc_tex, sl->wc->width, sl->wc->height, sl->wc->levels, sl->wc_b,
                          "renderer: whitecap stream", NULL);
         }
         slot_constants(sl);
@@ -856,7 +913,7 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
     glm_mat4_inv(world_to_clip, inv);
     glUseProgram(r->skyp.program);
     glUniformMatrix4fv(r->su[SU_CLIP_TO_WORLD], 1, GL_FALSE, (const GLfloat *)inv);
-    bind_tex(UNIT_SKY, r->sky_display_tex, r->su[SU_SKY_TEX]);
+    bind_tex(UNIT_SKY, chain_at(&r->sky_display_tex, 0), r->su[SU_SKY_TEX]);
     glBindBuffer(GL_ARRAY_BUFFER, r->sky_vbo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->sky_ibo);
     glEnableVertexAttribArray(0);
@@ -927,9 +984,9 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         memcpy(sb[s], sl->slope->bias, sizeof(sb[s]));
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
-        bind_tex(UNIT_PATTERNS + s, sl->slope_tex, u[OU_SLOPE_TEX0 + s]);
+        bind_tex(UNIT_PATTERNS + s, chain_at(&sl->slope_tex, 0), u[OU_SLOPE_TEX0 + s]);
         if (s < kw)   /* kw <= nwc: whitecap textures exist for these (create_textures) */
-            bind_tex(UNIT_PATTERNS + r->nfs + s, sl->wc_tex, u[OU_WC_TEX0 + s]);
+            bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&sl->wc_tex, 0), u[OU_WC_TEX0 + s]);
         else
             add_k_constants(sl, ck);
     }
@@ -950,7 +1007,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform4fv(u[OU_CONST_SLOPE], 1, cs);
     glUniform3fv(u[OU_CONST_K], 1, ck);
     bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
-    bind_tex(UNIT_SKY, r->sky_tex, u[OU_SKY_TEX]);
+    bind_tex(UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
     glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));
     glUniform1f(u[OU_SKY_SIZE], (float)r->sky.size);
     glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
@@ -994,7 +1051,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         glUniform3fv(u[OU_SEA_DISPLAY], 1, sea_d);
         glUniform3fv(u[OU_SUN_DISPLAY], 1, sun_d);
         bind_tex(UNIT_FRESNEL, r->fresnel_sun_tex, u[OU_FRESNEL_TEX]);
-        bind_tex(UNIT_SKY, r->sky_display_tex, u[OU_SKY_TEX]);
+        bind_tex(UNIT_SKY, chain_at(&r->sky_display_tex, 0), u[OU_SKY_TEX]);
     }
 }
 
@@ -1085,6 +1142,18 @@ static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float 
                  log2f(2.0f * (float)r->sky.size / (1.0f + rz));
     float sky = fminf(fmaxf(floorf(foot + 0.5f), 0.0f), (float)(r->sky.levels - 1));
     const GLint *u = r->ou[VARIANT(k, kw)];
+    if (r->level_tex) {
+        /* no LOD in the shader: each table's level is the texture bound (chain_tex) */
+        for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
+            bind_tex(UNIT_PATTERNS + s, chain_at(&r->slot[s].slope_tex, (int)sl[s]), -1);
+            if (s < kw)
+                bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&r->slot[s].wc_tex, (int)wl[s]),
+                         -1);
+        }
+        if (r->d.quality == QUALITY_HIGH)
+            bind_tex(UNIT_SKY, chain_at(&r->sky_tex, (int)sky), -1);
+        return;
+    }
     glUniform4fv(u[OU_SLOPE_LOD], 1, sl);
     glUniform4fv(u[OU_WC_LOD], 1, wl);
     glUniform1f(u[OU_SKY_RUN_LOD], sky);
@@ -1231,8 +1300,8 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "geometry: %s, %s, %d vertices\n"
         "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x)\n"
         "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
-        "fetches: per run of rows only the patterns whose mip means still vary there; whitecaps of %d "
-        "pattern(s); %s\n"
+        "fetches: per run of rows only the patterns whose mip means still vary there; "
+        "whitecaps of %d pattern(s); %s\n"
         "fragment precision: %s\n"
         "sky map: %s\n"
         "shading: %s\n",
@@ -1243,8 +1312,10 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                : "CPU-displaced (no vertex texture fetch), streamed per frame",
         grid_vertex_count(r->grid), r->nfs,
         r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes, r->nwc,
-        r->run_lod ? "one LOD per run (software rasteriser: per-pixel LOD is its slow path)"
-                   : "per-pixel LOD",
+        r->level_tex ? "one level per run, by binding that level's own texture (software "
+                       "rasteriser: per-pixel LOD is its slow path; no fragment LOD in this tier)"
+        : r->run_lod ? "one LOD per run (software rasteriser: per-pixel LOD is its slow path)"
+                     : "per-pixel LOD",
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",

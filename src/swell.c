@@ -43,6 +43,7 @@ struct options {
     int camera_given, path;
     struct camera camera;
     int quality, geometry, tier;
+    int pixel_lod;              /* --lod pixel */
     int verbose;
     int bench;                  /* --bench: time frames against the baseline quad */
     int warmup;                 /* --warmup: untimed bench frames; -1 = default */
@@ -83,6 +84,8 @@ static void usage(FILE *f)
 "  --quality Q       low | high                                                   [high]\n"
 "  --geometry G      grid (projected grid) | patches (near/far patches)           [grid]\n"
 "  --tier T          force a lower device tier: gles2-min | gles2-ext | gles3      [best]\n"
+"  --lod L           texture level: auto (one whole level per run of rows on software\n"
+"                    rasterisers, per pixel on GPUs) | pixel (per pixel, as GPUs) [auto]\n"
 "KMS:\n"
 "  --device PATH     DRM device such as /dev/dri/card0       [first with a display]\n"
 "  --connector NAME  connector such as HDMI-A-1 or Virtual-1    [first connected]\n"
@@ -157,7 +160,7 @@ static int is_value_option(const char *a)
     static const char *const names[] = {
         "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
-        "--quality", "--geometry", "--tier", "--device", "--connector", "--mode", "--kms-api",
+        "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode", "--kms-api",
         "--warmup", "--results", "--scene",
     };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
@@ -269,6 +272,11 @@ static int parse_args(int argc, char **argv, struct options *o)
             if (o->tier < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--tier: '%s' is not gles2-min, gles2-ext or "
                                "gles3", v);
+        } else if (!strcmp(a, "--lod")) {
+            if (!strcmp(v, "auto") || !strcmp(v, "pixel"))
+                o->pixel_lod = !strcmp(v, "pixel");
+            else
+                r = swell_fail(&err, SWELL_E_ARG, "--lod: '%s' is not auto or pixel", v);
         } else if (!strcmp(a, "--device")) {
             o->platform.device = v;
             if (!v[0])
@@ -544,6 +552,7 @@ int main(int argc, char **argv)
     struct renderer_desc rd = {
         .tables = &tables, .gpu = &gpu, .quality = o.quality, .geometry = o.geometry,
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
+        .pixel_lod = o.pixel_lod,
     };
     if (renderer_create(&rd, &r, &err))
         goto fail_gpu;

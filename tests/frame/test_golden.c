@@ -1,5 +1,6 @@
-/* Golden frames: the `swell` program renders five scenes at the forced gles2-min tier and each
- * frame is compared with tests/golden/NAME.png within a tolerance (llvmpipe is deterministic on
+/* Golden frames: the `swell` program renders five scenes at the forced gles2-min tier, with the
+ * per-pixel texture LOD a gles2-min GPU takes (--lod pixel; test_render's test_run_lod checks
+ * llvmpipe's own path, one level per run, against it), and each frame is compared with tests/golden/NAME.png within a tolerance (llvmpipe is deterministic on
  * one machine; the tolerance absorbs last-bit differences of FFTW/libm on another CPU).
  * Regenerate deliberately with `make golden` (SWELL_GOLDEN_UPDATE=1), then look at the PNGs. */
 #include <stdarg.h>
@@ -40,7 +41,7 @@ static void run_scene(const struct scene *s)
     snprintf(out, sizeof out, "%s/golden_%s.png", tmp, s->name);
     snprintf(golden, sizeof golden, "tests/golden/%s.png", s->name);
     snprintf(cmd, sizeof cmd,
-             "%s/swell --platform surfaceless --tier gles2-min --size 256x144 --time 3 "
+             "%s/swell --platform surfaceless --tier gles2-min --lod pixel --size 256x144 --time 3 "
              "--budget tiny %s --out %s > %s/golden_%s.log 2>&1",
              build, s->args, update ? golden : out, tmp, s->name);
     int rc = system(cmd);

@@ -34,7 +34,9 @@
 
 struct fixture {
     struct platform_handle ph;
-    struct swell_tables tables;
+    struct swell_tables tables;       /* what render() draws: synthetic, or baked for a test */
+    struct swell_tables synthetic, baked;
+    int baked_live;
     uint8_t *img, *img2;
 };
 
@@ -256,19 +258,41 @@ static void test_defined_pixels(void **state)
     check_defined(fx.img, "gles2-min high grid, 1 km looking down");
 }
 
+/* render() draws the tables the bake makes for this budget and wind until the test ends. */
+static void use_baked(uint64_t budget, float wind)
+{
+    struct seastate ss = { 0 };
+    struct swell_err err = { 0 };
+    ss.budget_bytes = budget;
+    ss.wind_speed_mps = wind;
+    if (swell_bake(&ss, NULL, &fx.baked, &err))
+        fail_msg("swell_bake: %s", err.msg);
+    fx.baked_live = 1;
+    fx.tables = fx.baked;
+}
+
+/* After every test, passed or failed: the synthetic tables and every knob back to default,
+ * so one failure does not cascade into the tests after it. */
+static int reset_fixture(void **state)
+{
+    (void)state;
+    if (fx.baked_live) {
+        tables_destroy(&fx.baked);
+        fx.baked_live = 0;
+    }
+    fx.tables = fx.synthetic;
+    g_exposure = 0.0f;
+    g_move_sun[0] = g_move_sun[1] = 0.0f;
+    g_cpu_geometry = g_fetch_all = g_pixel_lod = g_keep_resolved = 0;
+    return 0;
+}
+
 /* The same with the tables the bake makes (tiny budget): real spectra, foam and thresholds. */
 static void test_baked_tables(void **state)
 {
-    struct seastate ss = { 0 };
-    struct swell_tables baked, synthetic = fx.tables;
-    struct swell_err err = { 0 };
     struct camera c;
     (void)state;
-    ss.budget_bytes = SWELL_BUDGET_TINY;
-    ss.wind_speed_mps = 14.0f;
-    if (swell_bake(&ss, NULL, &baked, &err))
-        fail_msg("swell_bake: %s", err.msg);
-    fx.tables = baked;
+    use_baked(SWELL_BUDGET_TINY, 14.0f);
     surface_camera(&c);
     for (int q = 0; q < QUALITY_COUNT; q++)
         for (int g = 0; g < GEOMETRY_COUNT; g++) {
@@ -278,8 +302,6 @@ static void test_baked_tables(void **state)
             dump(fx.img, what);
             check_defined(fx.img, what);
         }
-    fx.tables = synthetic;
-    tables_destroy(&baked);
 }
 
 /* The horizon: a point 1e6 m away on the sea plane projects to a row; the sky above it must be
@@ -452,7 +474,8 @@ static void test_tiers(void **state)
 /* Where the device prefers one mip level per run of rows (gpu.c prefer_run_lod: llvmpipe,
  * softpipe): those runs against per-pixel LOD on the same tier, both qualities, at the surface
  * and at 1 km: RMSE below 5 of 255 (measured 1.3-3.9: low at the surface, where Hu's pass
- * shows the slopes' glitter unfiltered, differs most; high takes the sky map per run too). */
+ * shows the slopes' glitter unfiltered, differs most; high takes the sky map per run too). On
+ * the best tier by an explicit LOD, on gles2-min by per-level textures (renderer.c chain_tex). */
 static void test_run_lod(void **state)
 {
     struct camera cams[2];
@@ -468,22 +491,26 @@ static void test_run_lod(void **state)
     camera_defaults(&cams[1]);
     cams[1].pos[2] = 1000.0;
     cams[1].pitch_deg = -20.0f;
-    for (int q = 0; q < QUALITY_COUNT; q++)
-        for (int c = 0; c < 2; c++) {
-            g_pixel_lod = 1;
-            render(best, q, GEOMETRY_GRID, 35.0f, 120.0f, &cams[c], 2.0, fx.img, NULL);
-            assert_int_equal(g_run_lod_used, 0);
-            int pixel_draws = g_draws;
-            g_pixel_lod = 0;
-            render(best, q, GEOMETRY_GRID, 35.0f, 120.0f, &cams[c], 2.0, fx.img2, NULL);
-            assert_int_equal(g_run_lod_used, 1);
-            assert_true(g_draws >= pixel_draws);
-            double rmse = rmse_rgb(fx.img, fx.img2);
-            print_message("%s, %s, %s: one level per run (%d runs) vs per-pixel LOD (%d): "
-                          "RMSE %.2f / 255\n", gpu_tier_name(best), render_quality_name(q),
-                          c ? "1 km" : "surface", g_draws, pixel_draws, rmse);
-            assert_true(rmse < 5.0);
-        }
+    /* the best tier gives the level as an explicit LOD; gles2-min binds per-level textures */
+    int tiers[2] = { best, TIER_GLES2_MIN };
+    for (int t = 0; t < 2; t++)
+        for (int q = 0; q < QUALITY_COUNT; q++)
+            for (int c = 0; c < 2; c++) {
+                g_pixel_lod = 1;
+                render(tiers[t], q, GEOMETRY_GRID, 35.0f, 120.0f, &cams[c], 2.0, fx.img, NULL);
+                assert_int_equal(g_run_lod_used, 0);
+                int pixel_draws = g_draws;
+                g_pixel_lod = 0;
+                render(tiers[t], q, GEOMETRY_GRID, 35.0f, 120.0f, &cams[c], 2.0, fx.img2, NULL);
+                assert_int_equal(g_run_lod_used, 1);
+                assert_true(g_draws >= pixel_draws);
+                double rmse = rmse_rgb(fx.img, fx.img2);
+                print_message("%s, %s, %s: one level per run (%d runs) vs per-pixel LOD (%d): "
+                              "RMSE %.2f / 255\n", gpu_tier_name(tiers[t]),
+                              render_quality_name(q), c ? "1 km" : "surface", g_draws,
+                              pixel_draws, rmse);
+                assert_true(rmse < 5.0);
+            }
 }
 
 /* Where the tier has vertex texture fetch: the grid built and displaced in ocean.vert against
@@ -523,8 +550,9 @@ static void test_fetch_runs(void **state)
     camera_defaults(&c);
     c.pos[2] = 1000.0;
     c.pitch_deg = -20.0f;
+    g_pixel_lod = 1;   /* runs by the fetched patterns alone, not also by their levels */
     for (int q = 0; q < QUALITY_COUNT; q++) {
-            g_fetch_all = 1;
+        g_fetch_all = 1;
         render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
         assert_int_equal(g_draws, 1);
         assert_int_equal(g_draws_wc_const, 0);
@@ -543,31 +571,24 @@ static void test_fetch_runs(void **state)
 
 /* A baked spectrum's pattern spans a few octaves above its patch's fundamental, so its mip
  * means are nearly flat well before the 1x1 level (renderer.c DROP_RESOLVED): runs drop it
- * there, and the image stays that of runs that keep it to its 1x1 level. Every tier's LOD
- * path: gles2-min (mediump, per-pixel LOD), gles3 with the per-pixel LOD of GPUs and with one
- * level per run (llvmpipe). (Every pattern fetched everywhere is no reference here: at 1 km
+ * there, and the image stays that of runs that keep it to its 1x1 level. Every LOD path:
+ * the per-pixel LOD of GPUs, and llvmpipe's one level per run (gles3: an explicit LOD;
+ * gles2-min: per-level textures), each at gles2-min (mediump) and gles3. (Every pattern fetched everywhere is no reference here: at 1 km
  * the small patterns' whitecaps alias at their 2x2 levels, and in mediump their coordinates
  * grow to thousands of patches at the horizon, which fp16 resolves to whole patches.) */
 static void test_resolved_drop(void **state)
 {
-    struct seastate ss = { 0 };
-    struct swell_tables baked, synthetic = fx.tables;
-    struct swell_err err = { 0 };
     struct camera c;
-    static const struct { int tier, pixel_lod; const char *name; } cases[3] = {
-        { TIER_GLES2_MIN, 0, "gles2-min" }, { TIER_GLES3, 1, "gles3, per-pixel LOD" },
-        { TIER_GLES3, 0, "gles3, run LOD" }
+    static const struct { int tier, pixel_lod; const char *name; } cases[4] = {
+        { TIER_GLES2_MIN, 1, "gles2-min, per-pixel LOD" }, { TIER_GLES2_MIN, 0, "gles2-min, run LOD" },
+        { TIER_GLES3, 1, "gles3, per-pixel LOD" }, { TIER_GLES3, 0, "gles3, run LOD" }
     };
     (void)state;
-    ss.budget_bytes = SWELL_BUDGET_DEFAULT;
-    ss.wind_speed_mps = 15.0f;
-    if (swell_bake(&ss, NULL, &baked, &err))
-        fail_msg("swell_bake: %s", err.msg);
-    fx.tables = baked;
+    use_baked(SWELL_BUDGET_DEFAULT, 15.0f);
     camera_defaults(&c);
     c.pos[2] = 1000.0;
     c.pitch_deg = -20.0f;
-    for (int ci = 0; ci < 3; ci++)
+    for (int ci = 0; ci < 4; ci++)
         for (int q = 0; q < QUALITY_COUNT; q++) {
             int draws;
             g_pixel_lod = cases[ci].pixel_lod;
@@ -586,8 +607,6 @@ static void test_resolved_drop(void **state)
             assert_true(g_draws_resolved_drop > 0);
             assert_true(rmse < 1.0);
         }
-    fx.tables = synthetic;
-    tables_destroy(&baked);
 }
 
 int main(void)
@@ -607,26 +626,27 @@ int main(void)
         fprintf(stderr, "test_render: skipped, no EGL device: %s\n", err.msg);
         return 77;
     }
-    make_tables(&fx.tables);
+    make_tables(&fx.synthetic);
+    fx.tables = fx.synthetic;
     fx.img = malloc((size_t)W * H * 4);
     fx.img2 = malloc((size_t)W * H * 4);
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_defined_pixels),
-        cmocka_unit_test(test_baked_tables),
-        cmocka_unit_test(test_horizon),
-        cmocka_unit_test(test_glint),
-        cmocka_unit_test(test_loop),
-        cmocka_unit_test(test_tiers),
-        cmocka_unit_test(test_vtf_geometry),
-        cmocka_unit_test(test_fetch_runs),
-        cmocka_unit_test(test_resolved_drop),
-        cmocka_unit_test(test_run_lod),
-        cmocka_unit_test(test_set_sun),
+        cmocka_unit_test_teardown(test_defined_pixels, reset_fixture),
+        cmocka_unit_test_teardown(test_baked_tables, reset_fixture),
+        cmocka_unit_test_teardown(test_horizon, reset_fixture),
+        cmocka_unit_test_teardown(test_glint, reset_fixture),
+        cmocka_unit_test_teardown(test_loop, reset_fixture),
+        cmocka_unit_test_teardown(test_tiers, reset_fixture),
+        cmocka_unit_test_teardown(test_vtf_geometry, reset_fixture),
+        cmocka_unit_test_teardown(test_fetch_runs, reset_fixture),
+        cmocka_unit_test_teardown(test_resolved_drop, reset_fixture),
+        cmocka_unit_test_teardown(test_run_lod, reset_fixture),
+        cmocka_unit_test_teardown(test_set_sun, reset_fixture),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     free(fx.img);
     free(fx.img2);
-    tables_destroy(&fx.tables);
+    tables_destroy(&fx.synthetic);
     platform_close(&fx.ph);
     return rc;
 }
