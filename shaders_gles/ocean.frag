@@ -7,10 +7,9 @@
 // FS_WHITECAPS <= FS_PATTERNS: leading slots whose patterns carry whitecaps (bake.c).
 // SWELL_RUN_LOD (software rasterisers, gpu.c): the pattern tables are fetched at one whole mip
 // level per draw, the one nearest the LOD the hardware would pick at the run's rows
-// (renderer.c draw_runs); the Fresnel texture, a smooth function of the bumped view, and in
-// low quality the sky map, at level 0. With fragment texture LOD by texture2DLodEXT; without
-// (gles2-min), by texture2D of the level's own texture, which has no mips (renderer.c
-// chain_tex). Elsewhere the per-pixel implicit LOD.
+// (renderer.c draw_runs), by texture2D of that level's own texture, which has no mips
+// (renderer.c chain_tex); the Fresnel texture, a smooth function of the bumped view, and in
+// low quality the sky map, at level 0 likewise. Elsewhere the per-pixel implicit LOD.
 //
 // Per pixel only what depends on the pixel's own slope moments is evaluated: ocean.vert
 // linearises the rest about the vertex's mean slope s0 (see there), so the pixel adds the
@@ -31,7 +30,6 @@ uniform vec4 slope_bias[4];
 uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
-uniform float sky_run_lod;          // SWELL_RUN_LOD: the run's sky map level
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
@@ -48,19 +46,6 @@ uniform vec3 sun_display;           // low: display-space colour of Hu's Phong h
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
 varying vec4 v_lin_dx;              // ...and their derivatives in s.x
 varying vec4 v_lin_dy;              // ...and in s.y
-#if defined(SWELL_RUN_LOD) && defined(SWELL_HAS_TEXTURE_LOD)
-uniform vec4 slope_lod;             // per fragment pattern slot, this draw's mip level
-#define FETCH_SLOPE(i, tex, uv) texture2DLodEXT(tex, uv, slope_lod[i])
-#ifdef QUALITY_HIGH
-uniform vec4 wc_lod;
-#define FETCH_WC(i, tex, uv) texture2DLodEXT(tex, uv, wc_lod[i])
-#endif
-#define FETCH_LEVEL0(tex, uv) texture2DLodEXT(tex, uv, 0.0)
-#else
-#define FETCH_SLOPE(i, tex, uv) texture2D(tex, uv)
-#define FETCH_WC(i, tex, uv) texture2D(tex, uv)
-#define FETCH_LEVEL0(tex, uv) texture2D(tex, uv)
-#endif
 #if FS_PATTERNS > 0
 uniform sampler2D slope_tex0;
 varying vec2 v_uv0;
@@ -116,11 +101,11 @@ void add_whitecap(vec4 k)
     g_kvar += max(k.y - k.x * k.x, 0.0);
     g_clear *= 1.0 - clamp(k.z, 0.0, 1.0);
 }
-#define SLOPE(i, tex, uv) add_slope(slope_bias[i] + slope_scale[i] * FETCH_SLOPE(i, tex, uv))
-#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i] + wc_scale[i] * FETCH_WC(i, tex, uv))
+#define SLOPE(i, tex, uv) add_slope(slope_bias[i] + slope_scale[i] * texture2D(tex, uv))
+#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i] + wc_scale[i] * texture2D(tex, uv))
 #else
 // The single pass needs the mean slope only; ds_offset holds the fetched slots' biases.
-#define SLOPE(i, tex, uv) g_ds += slope_scale[i].xy * FETCH_SLOPE(i, tex, uv).xy
+#define SLOPE(i, tex, uv) g_ds += slope_scale[i].xy * texture2D(tex, uv).xy
 #endif
 
 void main()
@@ -141,7 +126,7 @@ void main()
 #endif
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.
     vec4 uv = v_lin + v_lin_dx * g_ds.x + v_lin_dy * g_ds.y;
-    vec4 ftex = FETCH_LEVEL0(fresnel_tex, uv.xy);
+    vec4 ftex = texture2D(fresnel_tex, uv.xy);
 #ifdef QUALITY_HIGH
     // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below; 1e-4 is
     // also the smallest value whose products stay normal in fp16.
@@ -165,13 +150,10 @@ void main()
     float foot = 0.5 * log2(max(var.x, var.y)) + v_extra.y;
 #if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint for the run, at a whole
-    // level the renderer computes from the run's mean variance (renderer.c set_run_lods): a
-    // per-pixel LOD is llvmpipe's slow path (A/B, rough 1 km: 6.6-6.9x -> 6.0x the quad).
-#ifdef SWELL_HAS_TEXTURE_LOD
-    vec3 sky = texture2DLodEXT(sky_tex, uv.zw, sky_run_lod).rgb * sky_map_scale;
-#else
-    vec3 sky = texture2D(sky_tex, uv.zw).rgb * sky_map_scale;   // the level's own texture
-#endif
+    // level the renderer computes from the run's mean variance (renderer.c set_run_lods) and
+    // binds as that level's own texture: a per-pixel LOD is llvmpipe's slow path (A/B, rough
+    // 1 km: 6.6-6.9x -> 6.0x the quad).
+    vec3 sky = texture2D(sky_tex, uv.zw).rgb * sky_map_scale;
 #elif defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
     // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
     // widened in each direction to at least the filter's (a max, where a bias multiplies).
@@ -218,7 +200,7 @@ void main()
 #else
     // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal, the
     // Phong sun of Hu §5.3 (R: evaluated per texel of the bumped view vector for this sun).
-    vec3 sky = FETCH_LEVEL0(sky_tex, uv.zw).rgb;
+    vec3 sky = texture2D(sky_tex, uv.zw).rgb;
     gl_FragColor = vec4(mix(sea_display, sky, ftex.a) + ftex.r * sun_display, 1.0);
 #endif
 }

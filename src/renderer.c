@@ -34,7 +34,7 @@ enum ocean_uniform {
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
     OU_LIN_S0, OU_SEA_DISPLAY, OU_SUN_DISPLAY, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
-    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SLOPE_LOD, OU_WC_LOD, OU_SKY_LEVEL_SCALE, OU_SKY_RUN_LOD, OU_COUNT
+    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -42,7 +42,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
     "wc_scale", "wc_bias", "lin_s0", "sea_display", "sun_display", "ds_offset", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
-    "wc_tex1", "wc_tex2", "wc_tex3", "slope_lod", "wc_lod", "sky_level_scale", "sky_run_lod"
+    "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -98,10 +98,13 @@ enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_PATTERNS = 2 };
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
 
-/* A table with mips on the GPU: one texture holding the chain or, with level_tex, one texture
+/* A table with mips on the GPU: one texture holding the chain or, with run_lod, one texture
  * per level, each without mips. Binding level l's texture is how a GLES 2 fragment shader
  * without texture LOD fetches at an explicit whole level (GLES 2 has no TEXTURE_BASE_LEVEL),
- * and llvmpipe filters a texture without mips on its fast path, with no LOD per pixel. */
+ * and llvmpipe filters a texture without mips on its fast path, with no LOD at all: measured
+ * (A/B, gles3, 1280x720) against texture2DLodEXT at the run's level on the chain, high at 1 km
+ * 6.1 -> 5.2x the quad, calm surface 5.0 -> 4.2x; low 2.9 -> 2.45x at the rough surface, 2.8
+ * -> 2.5x at 10 km, but 3.0 -> 3.4x at rough 1 km (left so: one mechanism on every tier). */
 struct chain_tex {
     GLuint tex[SLOT_LEVELS];          /* [0] the chain, or [l] level l */
     int levels;                       /* levels held as textures of their own; 0: one chain */
@@ -160,7 +163,6 @@ struct renderer {
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
     int run_lod;                      /* pattern fetches at one LOD per run (gpu.c) */
-    int level_tex;                    /* ...by binding per-level textures (chain_tex) */
     int draws;                        /* sea draws in the last frame */
     int draws_wc_const;               /* ...with whitecaps of a fetched slot as constants */
     int draws_resolved_drop;          /* ...dropping a slope slot by DROP_RESOLVED */
@@ -207,13 +209,13 @@ static void resolve(struct renderer_desc *d)
         d->sun_elev_deg = 30.0f;
 }
 
-/* A table of levels mips (levels 1: none) as one texture, or with level_tex one per level. */
+/* A table of levels mips (levels 1: none) as one texture, or with run_lod one per level. */
 static int chain_create(struct renderer *r, int w, int h, int levels, int format, int repeat,
                         const char *what, struct chain_tex *c, struct swell_err *err)
 {
     int rc;
     memset(c, 0, sizeof(*c));
-    if (!r->level_tex || levels <= 1)
+    if (!r->run_lod || levels <= 1)
         return gpu_texture_create(r->gpu, w, h, levels, format, repeat, what, &c->tex[0], err);
     if (levels > SLOT_LEVELS)
         return swell_fail(err, SWELL_E_ARG, "%s: %d mip levels, at most %d", what, levels,
@@ -802,7 +804,6 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     assign_patterns(r);
     r->vtf = choose_vtf(r);
     r->run_lod = r->gpu->caps.prefer_run_lod && !r->d.pixel_lod;
-    r->level_tex = r->run_lod && !gpu_fragment_texture_lod(&r->gpu->caps);
     gd.tables = r->t;
     gd.kind = r->d.geometry;
     gd.w = r->d.grid_w;
@@ -1113,7 +1114,8 @@ static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
     return key;
 }
 
-/* The LODs of a run from its key. In high quality also the sky map's (ocean.frag): eq. 27's
+/* The levels of a run from its key, bound as textures. In high quality also the sky map's
+ * (ocean.frag): eq. 27's
  * footprint 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z), as ocean.vert and ocean.frag take
  * it per pixel, here for the run: sigma^2 the unresolved variance, the top variance of the
  * slots not fetched and each fetched slot's mean within-texel variance at its level (the larger
@@ -1121,15 +1123,15 @@ static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
  * distance d (squared: d2), at altitude alt. */
 static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float d2, float alt)
 {
-    float sl[SWELL_MAX_PATTERNS] = { 0 }, wl[SWELL_MAX_PATTERNS] = { 0 };
+    int sl[SWELL_MAX_PATTERNS] = { 0 }, wl[SWELL_MAX_PATTERNS] = { 0 };
     float var[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
     if (!r->run_lod)
         return;
     for (int s = 0; s < r->nfs && s < SWELL_MAX_PATTERNS; s++) {
         if (s < k) {
             int lev = (int)((key >> (4 * s)) & 15u);
-            sl[s] = (float)lev;
-            wl[s] = s < kw ? (float)((key >> (16 + 4 * s)) & 15u) : 0.0f;
+            sl[s] = lev;
+            wl[s] = s < kw ? (int)((key >> (16 + 4 * s)) & 15u) : 0;
             var[0] += r->slot[s].level_var[lev][0];
             var[1] += r->slot[s].level_var[lev][1];
         } else {
@@ -1140,23 +1142,15 @@ static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float 
     float rz = alt / sqrtf(d2 + alt * alt);
     float foot = 0.5f * log2f(fmaxf(fmaxf(var[0], var[1]), 1e-4f)) +
                  log2f(2.0f * (float)r->sky.size / (1.0f + rz));
-    float sky = fminf(fmaxf(floorf(foot + 0.5f), 0.0f), (float)(r->sky.levels - 1));
-    const GLint *u = r->ou[VARIANT(k, kw)];
-    if (r->level_tex) {
-        /* no LOD in the shader: each table's level is the texture bound (chain_tex) */
-        for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
-            bind_tex(UNIT_PATTERNS + s, chain_at(&r->slot[s].slope_tex, (int)sl[s]), -1);
-            if (s < kw)
-                bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&r->slot[s].wc_tex, (int)wl[s]),
-                         -1);
-        }
-        if (r->d.quality == QUALITY_HIGH)
-            bind_tex(UNIT_SKY, chain_at(&r->sky_tex, (int)sky), -1);
-        return;
+    int sky = (int)fminf(fmaxf(floorf(foot + 0.5f), 0.0f), (float)(r->sky.levels - 1));
+    /* no LOD in the shader: each table's level is the texture bound (chain_tex) */
+    for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
+        bind_tex(UNIT_PATTERNS + s, chain_at(&r->slot[s].slope_tex, sl[s]), -1);
+        if (s < kw)
+            bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&r->slot[s].wc_tex, wl[s]), -1);
     }
-    glUniform4fv(u[OU_SLOPE_LOD], 1, sl);
-    glUniform4fv(u[OU_WC_LOD], 1, wl);
-    glUniform1f(u[OU_SKY_RUN_LOD], sky);
+    if (r->d.quality == QUALITY_HIGH)
+        bind_tex(UNIT_SKY, chain_at(&r->sky_tex, sky), -1);
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
@@ -1312,10 +1306,9 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                : "CPU-displaced (no vertex texture fetch), streamed per frame",
         grid_vertex_count(r->grid), r->nfs,
         r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes, r->nwc,
-        r->level_tex ? "one level per run, by binding that level's own texture (software "
-                       "rasteriser: per-pixel LOD is its slow path; no fragment LOD in this tier)"
-        : r->run_lod ? "one LOD per run (software rasteriser: per-pixel LOD is its slow path)"
-                     : "per-pixel LOD",
+        r->run_lod ? "one level per run, by binding that level's own texture (software "
+                     "rasteriser: per-pixel LOD is its slow path)"
+                   : "per-pixel LOD",
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",

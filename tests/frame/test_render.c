@@ -475,7 +475,8 @@ static void test_tiers(void **state)
  * softpipe): those runs against per-pixel LOD on the same tier, both qualities, at the surface
  * and at 1 km: RMSE below 5 of 255 (measured 1.3-3.9: low at the surface, where Hu's pass
  * shows the slopes' glitter unfiltered, differs most; high takes the sky map per run too). On
- * the best tier by an explicit LOD, on gles2-min by per-level textures (renderer.c chain_tex). */
+ * the best tier (highp on llvmpipe) and on gles2-min (mediump); both bind per-level textures
+ * (renderer.c chain_tex). */
 static void test_run_lod(void **state)
 {
     struct camera cams[2];
@@ -491,7 +492,6 @@ static void test_run_lod(void **state)
     camera_defaults(&cams[1]);
     cams[1].pos[2] = 1000.0;
     cams[1].pitch_deg = -20.0f;
-    /* the best tier gives the level as an explicit LOD; gles2-min binds per-level textures */
     int tiers[2] = { best, TIER_GLES2_MIN };
     for (int t = 0; t < 2; t++)
         for (int q = 0; q < QUALITY_COUNT; q++)
@@ -572,8 +572,8 @@ static void test_fetch_runs(void **state)
 /* A baked spectrum's pattern spans a few octaves above its patch's fundamental, so its mip
  * means are nearly flat well before the 1x1 level (renderer.c DROP_RESOLVED): runs drop it
  * there, and the image stays that of runs that keep it to its 1x1 level. Every LOD path:
- * the per-pixel LOD of GPUs, and llvmpipe's one level per run (gles3: an explicit LOD;
- * gles2-min: per-level textures), each at gles2-min (mediump) and gles3. (Every pattern fetched everywhere is no reference here: at 1 km
+ * the per-pixel LOD of GPUs, and llvmpipe's one level per run (per-level textures), each at
+ * gles2-min (mediump) and gles3. (Every pattern fetched everywhere is no reference here: at 1 km
  * the small patterns' whitecaps alias at their 2x2 levels, and in mediump their coordinates
  * grow to thousands of patches at the horizon, which fp16 resolves to whole patches.) */
 static void test_resolved_drop(void **state)
