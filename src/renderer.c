@@ -119,8 +119,8 @@ struct fs_slot {
     float level_var[SLOT_LEVELS][2];  /* per mip level: mean within-texel slope variance x, y
                                        * of the first loop frame (sky_run_lod, drop_lod) */
     float log2_density[2];            /* log2 texels per metre of the slope, whitecap table */
-    float drop_lod;                   /* from this LOD up the slope table resolves too little
-                                       * to fetch (DROP_RESOLVED) */
+    int drop_lod;                     /* from this level up the slope table resolves too
+                                       * little to fetch (DROP_RESOLVED) */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
 };
@@ -332,7 +332,7 @@ static void assign_patterns(struct renderer *r)
         sl->pattern = order[n - fs + s];
         sl->slope = tables_find(r->t, TABLE_SLOPE, sl->pattern);
         sl->wc = tables_find(r->t, TABLE_WHITECAP, sl->pattern);
-        sl->drop_lod = (float)SLOT_LEVELS;
+        sl->drop_lod = SLOT_LEVELS;
         if (sl->slope && sl->wc)
             slot_tables_stats(r, sl);
     }
@@ -373,11 +373,11 @@ static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
     /* The fraction resolved by the mip means at level l: 1 - within(l) / within(top). */
     int top = (t->levels < SLOT_LEVELS ? t->levels : SLOT_LEVELS) - 1;
     float total = sl->level_var[top][0] + sl->level_var[top][1];
-    sl->drop_lod = (float)SLOT_LEVELS;
+    sl->drop_lod = SLOT_LEVELS;
     for (int l = top; l >= 0 && total > 0.0f; l--) {
         if (total - (sl->level_var[l][0] + sl->level_var[l][1]) >= DROP_RESOLVED * total)
             break;
-        sl->drop_lod = (float)l;
+        sl->drop_lod = l;
     }
 }
 
@@ -1056,28 +1056,6 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     }
 }
 
-/* Slots fetched for a row whose nearest vertex is at squared horizontal distance d2: those whose
- * patch is still larger than drop x the pixel footprint there. On a plane seen from altitude a
- * at distance d the footprint along the view (the larger axis, which sets the LOD) is
- * d^2 / a times the pixel's angle. With resolved, also only those whose mip means at the LOD
- * there still vary (drop_lod). Slots are largest first, so the answer is a count. */
-static float row_footprint(float d2, float alt, float pix_angle)
-{
-    return (d2 + alt * alt) / alt * pix_angle;
-}
-
-static int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle,
-                        float drop, int resolved)
-{
-    float foot = row_footprint(d2, alt, pix_angle), lf = log2f(foot);
-    int k = 0;
-    while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * drop > foot &&
-           (!resolved || r->d.keep_resolved ||
-            lf + r->slot[k].log2_density[0] < r->slot[k].drop_lod))
-        k++;
-    return k;
-}
-
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
  * hardware would take at the row, so a run is a span of rows where no table's level changes.
  * Whole levels, because llvmpipe fetches one level where the LOD has no fraction and two (the
@@ -1096,6 +1074,29 @@ static int nearest_level(float log2_foot, float log2_density)
 {
     float lod = floorf(log2_foot + log2_density + 0.5f);
     return lod <= 0.0f ? 0 : lod >= (float)RUN_LOD_MAX ? RUN_LOD_MAX : (int)lod;
+}
+
+/* Slots fetched for a row whose nearest vertex is at squared horizontal distance d2: those whose
+ * patch is still larger than drop x the pixel footprint there. On a plane seen from altitude a
+ * at distance d the footprint along the view (the larger axis, which sets the LOD) is
+ * d^2 / a times the pixel's angle. With resolved, also only those whose mip means still vary
+ * at the row's level (drop_lod; the level a run fetches, nearest_level). Slots are largest
+ * first, so the answer is a count. */
+static float row_footprint(float d2, float alt, float pix_angle)
+{
+    return (d2 + alt * alt) / alt * pix_angle;
+}
+
+static int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle,
+                        float drop, int resolved)
+{
+    float foot = row_footprint(d2, alt, pix_angle), lf = log2f(foot * RUN_LOD_ROW_MEAN);
+    int k = 0;
+    while (k < r->nfs && r->t->pattern[r->slot[k].pattern].size_m * drop > foot &&
+           (!resolved || r->d.keep_resolved ||
+            nearest_level(lf, r->slot[k].log2_density[0]) < r->slot[k].drop_lod))
+        k++;
+    return k;
 }
 
 /* The run key of a row at footprint foot (m per pixel) fetching k slopes and kw whitecaps: the

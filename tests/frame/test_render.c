@@ -573,7 +573,8 @@ static void test_fetch_runs(void **state)
  * means are nearly flat well before the 1x1 level (renderer.c DROP_RESOLVED): runs drop it
  * there, and the image stays that of runs that keep it to its 1x1 level. Every LOD path:
  * the per-pixel LOD of GPUs, and llvmpipe's one level per run (per-level textures), each at
- * gles2-min (mediump) and gles3. (Every pattern fetched everywhere is no reference here: at 1 km
+ * gles2-min (mediump) and gles3: RMSE < 1.2 / 255 (measured 0.35-0.95; with 10 % for 2 %,
+ * 1.73, and 30 %, 3.43). (Every pattern fetched everywhere is no reference here: at 1 km
  * the small patterns' whitecaps alias at their 2x2 levels, and in mediump their coordinates
  * grow to thousands of patches at the horizon, which fp16 resolves to whole patches.) */
 static void test_resolved_drop(void **state)
@@ -605,7 +606,7 @@ static void test_resolved_drop(void **state)
                           "255\n", cases[ci].name, render_quality_name(q), g_draws,
                           g_draws_resolved_drop, draws, rmse);
             assert_true(g_draws_resolved_drop > 0);
-            assert_true(rmse < 1.0);
+            assert_true(rmse < 1.2);
         }
 }
 
