@@ -18,7 +18,7 @@
 // (eq. 26) on Hu's Fresnel texture, refracted light (eq. 28), whitecaps (Dupuy eq. 6).
 // Otherwise Hu's single pass: Fresnel texture, bumped sky lookup, Phong sun, mixed in display
 // space as Hu's LDR pass was: the renderer binds a tone-mapped sky map and a Fresnel texture
-// whose R holds Hu's Phong term for the current sun.
+// whose RGB holds the water colour and Hu's Phong term for the current sun.
 #include "common.glsl"
 
 uniform sampler2D fresnel_tex;      // Hu §5.1: A = Fresnel at the bumped view vector
@@ -40,8 +40,6 @@ varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weig
 varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here
 varying vec2 v_extra;               // foam clear fraction not fetched here, sky LOD offset
 #else
-uniform vec3 sea_display;           // low: tone-mapped eq. 28 water colour
-uniform vec3 sun_display;           // low: display-space colour of Hu's Phong highlight
 #endif
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
 varying vec4 v_lin_dx;              // ...and their derivatives in s.x
@@ -198,9 +196,10 @@ void main()
     // Foam: Lambertian, reflectance 0.4 (Dupuy §2), lit by sun and sky.
     gl_FragColor = vec4(tone_map(mix(clear_sea, foam_radiance, cover)), 1.0);
 #else
-    // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal, the
-    // Phong sun of Hu §5.3 (R: evaluated per texel of the bumped view vector for this sun).
+    // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal; the
+    // texture's RGB holds the rest per texel of the bumped view vector for this sun: (1 - F) x
+    // the water colour + the Phong sun of Hu §5.3 (renderer.c upload_fresnel_sun).
     vec3 sky = texture2D(sky_tex, uv.zw).rgb;
-    gl_FragColor = vec4(mix(sea_display, sky, ftex.a) + ftex.r * sun_display, 1.0);
+    gl_FragColor = vec4(ftex.rgb + ftex.a * sky, 1.0);
 #endif
 }
