@@ -38,7 +38,8 @@ uniform vec4 wc_scale[4];
 uniform vec4 wc_bias[4];
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here
-varying vec2 v_extra;               // foam clear fraction not fetched here, sky LOD offset
+varying vec2 v_extra;               // foam clear fraction not fetched here (with no whitecap
+                                    // fetched: the coverage, ocean.vert), sky LOD offset
 #else
 #endif
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
@@ -191,8 +192,12 @@ void main()
 #if FS_WHITECAPS > 3
     WHITECAP(3, wc_tex3, v_uv3);
 #endif
+#if FS_WHITECAPS > 0
     float w = 0.5 + 0.5 * erf_as((whitecap_epsilon - g_mu) * inversesqrt(2.0 * max(g_kvar, 1e-6)));
     float cover = 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * g_clear;
+#else
+    float cover = v_extra.x;   // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
+#endif
     // Foam: Lambertian, reflectance 0.4 (Dupuy §2), lit by sun and sky.
     gl_FragColor = vec4(tone_map(mix(clear_sea, foam_radiance, cover)), 1.0);
 #else

@@ -1,5 +1,5 @@
 // ocean.vert - CPU-displaced sea vertices (gles2-min: no vertex texture fetch). Positions are
-// validate: FS_PATTERNS=0 | FS_PATTERNS=1 | FS_PATTERNS=2 | FS_PATTERNS=3 | FS_PATTERNS=4 | FS_PATTERNS=4 VTF_PATTERNS=4 | FS_PATTERNS=2 VTF_PATTERNS=3 | FS_PATTERNS=1 VTF_PATTERNS=1
+// validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1
 // camera-relative; texture coordinates are a per-pattern offset wrapped on the CPU in double
 // plus the camera-relative rest position over the patch size, so they stay small.
 //
@@ -85,6 +85,10 @@ uniform vec4 const_slope;               // slots not fetched: -, -, slope varian
 uniform vec3 const_k;                   // ...their k mean, k variance, foam clear fraction
 uniform vec2 unresolved_var;            // slope variance below every table (Bruneton eq. 4)
 uniform vec2 total_var;                 // every pattern's slope variance + unresolved_var
+#if FS_WHITECAPS == 0
+uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's, own name: a
+                                        // uniform in both stages needs one precision)
+#endif
 varying vec4 v_sun;
 varying vec4 v_base;
 varying vec2 v_extra;
@@ -188,6 +192,14 @@ void main()
     // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
     vec3 r = reflect(-v, n);
     v_extra = vec2((1.0 - a_geo_k.z) * const_k.z, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))));
+#if FS_WHITECAPS == 0
+    // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
+    // moments alone, so it is evaluated here and v_extra.x carries it (exact where no pattern
+    // is resolved per vertex, as the moments are then the same at every vertex).
+    float w = 0.5 + 0.5 * erf_as((whitecap_epsilon_v - v_base.z) *
+                                 inversesqrt(2.0 * max(v_base.w, 1e-6)));
+    v_extra.x = 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * v_extra.x;
+#endif
 #endif
 #if FS_PATTERNS > 0
     v_uv0 = pattern_uv_offset[0] + a_rest * pattern_inv_size[0];

@@ -34,7 +34,7 @@ enum ocean_uniform {
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
     OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
-    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_COUNT
+    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -42,7 +42,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
     "wc_scale", "wc_bias", "lin_s0", "ds_offset", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
-    "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale"
+    "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -1037,6 +1037,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform3fv(u[OU_FOAM_RADIANCE], 1, foam);
     glUniform2fv(u[OU_UNRESOLVED], 1, unres);
     glUniform1f(u[OU_EPSILON], r->t->whitecap_epsilon);
+    glUniform1f(u[OU_EPSILON_V], r->t->whitecap_epsilon);
     /* Both passes are linearised about the slots' mean slope (ocean.vert) with a step of the
      * slope deviation of every slot, fetched here or not: the same secant in every run, so
      * no seam where a run drops a pattern (with the fetched slots' deviation alone, fetching
