@@ -541,8 +541,9 @@ static void test_vtf_geometry(void **state)
 /* Rows where a pattern's patch is smaller than a pixel take its top mip level as a constant
  * instead of fetching it (its whitecaps already below 8 pixels): from 1 km up the picture must
  * be the one that fetches every pattern everywhere (RMSE < 0.5 / 255; measured 0.39 high,
- * where runs without whitecap fetches take eq. 6 per vertex in highp, 0.35 low, and 0.85-1.53 when each run linearised the lookups with its own fetched slots'
- * deviation), drawn in more than one run, at both qualities. */
+ * where runs without whitecap fetches take eq. 6 per vertex in highp, 0.35 low, and
+ * 0.85-1.53 when each run linearised the lookups with its own fetched slots' deviation),
+ * drawn in more than one run, at both qualities. */
 static void test_fetch_runs(void **state)
 {
     struct camera c;
