@@ -582,8 +582,10 @@ static void test_resolved_drop(void **state)
 {
     struct camera c;
     static const struct { int tier, pixel_lod; const char *name; } cases[4] = {
-        { TIER_GLES2_MIN, 1, "gles2-min, per-pixel LOD" }, { TIER_GLES2_MIN, 0, "gles2-min, run LOD" },
-        { TIER_GLES3, 1, "gles3, per-pixel LOD" }, { TIER_GLES3, 0, "gles3, run LOD" }
+        { TIER_GLES2_MIN, 1, "gles2-min, per-pixel LOD" },
+        { TIER_GLES2_MIN, 0, "gles2-min, run LOD" },
+        { TIER_GLES3, 1, "gles3, per-pixel LOD" },
+        { TIER_GLES3, 0, "gles3, run LOD" }
     };
     (void)state;
     use_baked(SWELL_BUDGET_DEFAULT, 15.0f);
