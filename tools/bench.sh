@@ -204,8 +204,10 @@ if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
         nm "$swell" | grep -q " [Tt] $f$" || echo "bench: warning: $f not found in $swell (inlined?); callgrind will not see it"
         toggles="$toggles --toggle-collect=$f"
     done
-    # The CPU work depends on the tier (patterns resolved per vertex) and the view, not on the
-    # quality or the sea state (same table sizes): one run per tier x path.
+    # The CPU work depends on the tier and the view, not on the quality, and on the sea state
+    # only through the patterns resolved per vertex: none for calm and rough (same table
+    # sizes), one on gles2-min for storm, whose breaking patterns fill the units (README, which
+    # gives storm's count by hand). One run per tier x path, on the last scene's tables.
     cg_scene=$(set -- $scenes; echo "${!#}")
     # A twentieth of the frame size: the same aspect ratio, so the same projected grid.
     cg_w=$(( ${size%x*} / 20 )); cg_h=$(( ${size#*x} / 20 ))
