@@ -22,6 +22,15 @@ float erf_as(float x)
     return x < 0.0 ? -y : y;
 }
 
+// Whitecap coverage, Dupuy eq. 6: the fraction of k ~ N(mu, kvar) beyond the threshold eps,
+// combined with the baked persistent foam's clear fraction (both ocean shaders use it: the
+// fragment where it fetches whitecap tables, the vertex where no table is fetched).
+float whitecap_cover(float eps, float mu, float kvar, float foam_clear)
+{
+    float w = 0.5 + 0.5 * erf_as((eps - mu) * inversesqrt(2.0 * max(kvar, 1e-6)));
+    return 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * foam_clear;
+}
+
 // Reinhard x / (1 + x) of a radiance already scaled by the exposure (the renderer folds the
 // exposure into every radiance uniform), then gamma 2 (sqrt) as the sRGB transfer: within 0.03
 // of the sRGB curve above 0.1, and sqrt is one instruction on GLES2 GPUs where pow() is

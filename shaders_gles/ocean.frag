@@ -146,7 +146,9 @@ void main()
 
     // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
     // log2 of it is log2(sigma) + the vertex's log2(2 size du/dzeta).
+#ifndef SWELL_RUN_LOD
     float foot = 0.5 * log2(max(var.x, var.y)) + v_extra.y;
+#endif
 #if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint for the run, at a whole
     // level the renderer computes from the run's mean variance (renderer.c set_run_lods) and
@@ -193,8 +195,7 @@ void main()
     WHITECAP(3, wc_tex3, v_uv3);
 #endif
 #if FS_WHITECAPS > 0
-    float w = 0.5 + 0.5 * erf_as((whitecap_epsilon - g_mu) * inversesqrt(2.0 * max(g_kvar, 1e-6)));
-    float cover = 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * g_clear;
+    float cover = whitecap_cover(whitecap_epsilon, g_mu, g_kvar, g_clear);
 #else
     float cover = v_extra.x;   // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif

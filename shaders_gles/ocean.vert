@@ -196,9 +196,7 @@ void main()
     // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
     // moments alone, so it is evaluated here and v_extra.x carries it (exact where no pattern
     // is resolved per vertex, as the moments are then the same at every vertex).
-    float w = 0.5 + 0.5 * erf_as((whitecap_epsilon_v - v_base.z) *
-                                 inversesqrt(2.0 * max(v_base.w, 1e-6)));
-    v_extra.x = 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * v_extra.x;
+    v_extra.x = whitecap_cover(whitecap_epsilon_v, v_base.z, v_base.w, v_extra.x);
 #endif
 #endif
 #if FS_PATTERNS > 0

@@ -148,9 +148,9 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
      * differ it fetches each from its own mip level: measured here, a slope fetch at one
      * uniform LOD per draw made the whole 1 km frame 20-30 % faster (low 26.7 -> 21.8 ms,
      * high 46 -> 34 ms at 1280x720, gles3). So on software rasterisers the renderer picks
-     * the level per run of rows from the rows' footprint (renderer.c draw_runs): an explicit
-     * LOD in the fragment shader where the tier has one, else per-level textures without
-     * mips (renderer.c chain_tex); GPUs keep the per-pixel LOD, free there. */
+     * the level per run of rows from the rows' footprint (renderer.c draw_runs) and binds it
+     * as that level's own texture without mips (renderer.c chain_tex), on every tier; GPUs
+     * keep the per-pixel LOD, free there. */
     c->prefer_run_lod = software;
     return SWELL_OK;
 }

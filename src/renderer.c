@@ -117,7 +117,7 @@ struct fs_slot {
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
     float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
     float level_var[SLOT_LEVELS][2];  /* per mip level: mean within-texel slope variance x, y
-                                       * of the first loop frame (sky_run_lod, drop_lod) */
+                                       * of the first loop frame (set_run_lods, drop_lod) */
     float log2_density[2];            /* log2 texels per metre of the slope, whitecap table */
     int drop_lod;                     /* from this level up the slope table resolves too
                                        * little to fetch (DROP_RESOLVED) */
@@ -150,7 +150,7 @@ struct renderer {
     struct chain_tex sky_tex;
     struct chain_tex sky_display_tex; /* the sky map tone-mapped: background, low quality */
     int sky_half;                     /* sky_tex holds half-float radiances (scale 1) */
-    GLuint fresnel_sun_tex;           /* low: A Fresnel, R Hu's Phong term for this sun */
+    GLuint fresnel_sun_tex;           /* low: A Fresnel, RGB (1 - F) water + Hu's Phong sun */
     const struct swell_table *fresnel;
     uint8_t *scratch;                 /* derived textures are built here */
     struct swell_table fresnel_own;   /* built here only when the tables lack one */
@@ -1128,12 +1128,11 @@ static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
 }
 
 /* The levels of a run from its key, bound as textures. In high quality also the sky map's
- * (ocean.frag): eq. 27's
- * footprint 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z), as ocean.vert and ocean.frag take
- * it per pixel, here for the run: sigma^2 the unresolved variance, the top variance of the
- * slots not fetched and each fetched slot's mean within-texel variance at its level (the larger
- * of x and y, as the shader); r_z the reflected view's on a flat sea at the run's middle
- * distance d (squared: d2), at altitude alt. */
+ * (ocean.frag): eq. 27's footprint 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z), as
+ * ocean.vert and ocean.frag take it per pixel, here for the run: sigma^2 the unresolved
+ * variance, the top variance of the slots not fetched and each fetched slot's mean
+ * within-texel variance at its level (the larger of x and y, as the shader); r_z the reflected
+ * view's on a flat sea at the run's middle distance d (squared: d2), at altitude alt. */
 static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float d2, float alt)
 {
     int sl[SWELL_MAX_PATTERNS] = { 0 }, wl[SWELL_MAX_PATTERNS] = { 0 };
