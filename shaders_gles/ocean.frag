@@ -30,6 +30,7 @@ uniform vec4 slope_bias[4];
 uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
+uniform float sky_top_level;        // the sky map's last mip level
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
@@ -164,15 +165,23 @@ void main()
     gy *= max(1.0, f * inversesqrt(max(dot(gy, gy), 1e-8)));
     vec3 sky = texture2DGradEXT(sky_tex, uv.zw, gx, gy).rgb * sky_map_scale;
 #else
-    // gles2-min: no gradients, no explicit LOD, only a bias on the pixel's own LOD. Eq. 27
-    // wants the larger of that LOD and the filter's footprint (as the gradient path takes);
-    // a bias of the whole footprint gave their sum, which blurred the sky to grey where the
-    // pixel's own LOD was high, left pixels of small variance sharp and bright (sparkles), and
-    // drew a sawtooth along the horizon's grid row, where the own LOD differs per triangle.
-    // So a first fetch reads the own LOD (the map's A holds each level's index, sky.h), and
-    // the second biases by what the footprint asks beyond it: LOD = max(own, footprint).
-    float own = texture2D(sky_tex, uv.zw).a * sky_level_scale;
-    vec3 sky = texture2D(sky_tex, uv.zw, max(foot - own, 0.0)).rgb * sky_map_scale;
+    // gles2-min: no gradients, no explicit LOD, only a bias on the pixel's own LOD lambda.
+    // Eq. 27 wants the larger of lambda and the filter's footprint (as the gradient path
+    // takes); a bias of the whole footprint gave their sum, which blurred the sky to grey where
+    // lambda was high and left pixels of small variance sharp and bright (sparkles). So the
+    // bias is what the footprint asks beyond lambda, foot - lambda where positive, with lambda
+    // read from the map's A (each level's index, sky.h) by fetches at known biases. A fetch
+    // sees lambda + bias clamped to the map's levels [0, top]; a read at bias 0 lost every
+    // magnified pixel (lambda < 0), and the horizon's grid row, where lambda jumps per triangle
+    // down to -5, drew a sawtooth. So two reads, at biases top - foot and 2 top - foot, give
+    // a1 = clamp(lambda + top - foot, 0, top) and a2 = clamp(lambda + 2 top - foot, 0, top);
+    // for lambda in [foot - 2 top, foot], the window where the answer depends on it,
+    // 2 top - a1 - a2 is foot - lambda exactly (one of them is 0 or top), and 0 above it.
+    // Below it, as where a quad's mediump uv are equal (lambda = -inf), it stays too sharp.
+    float a1 = texture2D(sky_tex, uv.zw, sky_top_level - foot).a;
+    float a2 = texture2D(sky_tex, uv.zw, 2.0 * sky_top_level - foot).a;
+    float bias = 2.0 * sky_top_level - (a1 + a2) * sky_level_scale;
+    vec3 sky = texture2D(sky_tex, uv.zw, max(bias, 0.0)).rgb * sky_map_scale;
 #endif
 
     // Refracted light, eq. 28.

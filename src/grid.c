@@ -613,11 +613,14 @@ static inline void image_phase(struct f4_image *im, const struct stream_phase *p
 }
 
 /* Bilinear samples at texel coordinates (x, y), wrapped (power-of-two sizes), of two float4
- * images of the same size (slope and whitecaps), blending their tiles first if they are stale.
+ * images of the same size (slope and whitecaps), blending their tiles first if they are stale;
+ * each texel's four channels as one vector.
  * COORD_BIAS, a multiple of the size, makes the coordinates positive so truncation floors them
  * (|x| < 2^30 texels; the fraction keeps 2^-22 texel). */
+static inline f4 lerp4(f4 a, f4 b, f4 t) { return a + (b - a) * t; }
+
 static inline void sample_f4x2(struct f4_image *im, struct f4_image *im2, double x, double y,
-                               float out[4], float out2[4])
+                               f4 *out, f4 *out2)
 {
     const int wm = im->w - 1, hm = im->h - 1;
     double bx = x + COORD_BIAS, by = y + COORD_BIAS;
@@ -630,14 +633,22 @@ static inline void sample_f4x2(struct f4_image *im, struct f4_image *im2, double
         blend_tile(im, xi >> TILE_LOG2, yi >> TILE_LOG2);
     if (im2->stamp[tile] != im2->gen)
         blend_tile(im2, xi >> TILE_LOG2, yi >> TILE_LOG2);
+    const f4 vx = { fx, fx, fx, fx }, vy = { fy, fy, fy, fy };
     const float *a = im->data + off, *c = a + stride;
     const float *a2 = im2->data + off, *c2 = a2 + stride;
-    for (int k = 0; k < 4; k++) {
-        float top = a[k] + (a[k + 4] - a[k]) * fx, bot = c[k] + (c[k + 4] - c[k]) * fx;
-        float top2 = a2[k] + (a2[k + 4] - a2[k]) * fx, bot2 = c2[k] + (c2[k + 4] - c2[k]) * fx;
-        out[k] = top + (bot - top) * fy;
-        out2[k] = top2 + (bot2 - top2) * fy;
-    }
+    *out = lerp4(lerp4(ld4(a), ld4(a + 4), vx), lerp4(ld4(c), ld4(c + 4), vx), vy);
+    *out2 = lerp4(lerp4(ld4(a2), ld4(a2 + 4), vx), lerp4(ld4(c2), ld4(c2 + 4), vx), vy);
+}
+
+/* Lane-wise max(a, b) by a compare and a bitwise select (no intrinsics; NaN in a gives b). */
+static inline f4 max4(f4 a, f4 b)
+{
+    i32x4 gt = a > b, ia, ib;
+    memcpy(&ia, &a, sizeof(ia));
+    memcpy(&ib, &b, sizeof(ib));
+    ia = (ia & gt) | (ib & ~gt);
+    memcpy(&a, &ia, sizeof(a));
+    return a;
 }
 
 static inline float maxf(float a, float b) { return a > b ? a : b; }
@@ -915,16 +926,20 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
 {
     struct grid_pattern *p = f->p;
     const int top = p->levels - 1;
+    /* lanes 0, 1: the mean slope; 2, 3: the resolved variance <s^2> - <s>^2 (floored at 0) */
+    const f4 var_lanes = { 0.0f, 0.0f, 1.0f, 1.0f };
+    const f4 var_floor = { -INFINITY, -INFINITY, 0.0f, 0.0f };
+    _Static_assert(GRID_A_SVAR == GRID_A_SLOPE + 2, "slope mean and variance are one vector");
     for (int k = 0; k < g->nverts; k++) {
-        float *vx = verts + (size_t)k * GRID_FLOATS, m[4], q[4];
+        float *vx = verts + (size_t)k * GRID_FLOATS;
         int lev = mip_level(g->foot[k] * f->lev_k, top);
         double x = f->mx0[lev] + g->rx[k] * f->mk[lev];
         double y = f->my0[lev] + g->ry[k] * f->mk[lev];
-        sample_f4x2(&p->slope_f[lev], &p->wc_f[lev], x, y, m, q);
-        vx[GRID_A_SLOPE] += m[0];
-        vx[GRID_A_SLOPE + 1] += m[1];
-        vx[GRID_A_SVAR] += maxf(m[2] - m[0] * m[0], 0.0f);
-        vx[GRID_A_SVAR + 1] += maxf(m[3] - m[1] * m[1], 0.0f);
+        f4 m, q;
+        sample_f4x2(&p->slope_f[lev], &p->wc_f[lev], x, y, &m, &q);
+        f4 mm = __builtin_shufflevector(m, m, 0, 1, 0, 1);
+        f4 acc = ld4(vx + GRID_A_SLOPE) + max4(m - mm * mm * var_lanes, var_floor);
+        memcpy(vx + GRID_A_SLOPE, &acc, sizeof(acc));
         vx[GRID_A_K] += q[0];
         vx[GRID_A_K + 1] += maxf(q[1] - q[0] * q[0], 0.0f);
         vx[GRID_A_FOAM] *= 1.0f - clamp01(q[2]);
