@@ -31,6 +31,7 @@ uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
 uniform float sky_top_level;        // the sky map's last mip level
+uniform float sky_bias_max;         // the device's largest LOD bias (gpu.c)
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
@@ -170,18 +171,20 @@ void main()
     // takes); a bias of the whole footprint gave their sum, which blurred the sky to grey where
     // lambda was high and left pixels of small variance sharp and bright (sparkles). So the
     // bias is what the footprint asks beyond lambda, foot - lambda where positive, with lambda
-    // read from the map's A (each level's index, sky.h) by fetches at known biases. A fetch
-    // sees lambda + bias clamped to the map's levels [0, top]; a read at bias 0 lost every
-    // magnified pixel (lambda < 0), and the horizon's grid row, where lambda jumps per triangle
-    // down to -5, drew a sawtooth. So two reads, at biases top - foot and 2 top - foot, give
-    // a1 = clamp(lambda + top - foot, 0, top) and a2 = clamp(lambda + 2 top - foot, 0, top);
-    // for lambda in [foot - 2 top, foot], the window where the answer depends on it,
-    // 2 top - a1 - a2 is foot - lambda exactly (one of them is 0 or top), and 0 above it.
-    // Below it, as where a quad's mediump uv are equal (lambda = -inf), it stays too sharp.
-    float a1 = texture2D(sky_tex, uv.zw, sky_top_level - foot).a;
-    float a2 = texture2D(sky_tex, uv.zw, 2.0 * sky_top_level - foot).a;
-    float bias = 2.0 * sky_top_level - (a1 + a2) * sky_level_scale;
-    vec3 sky = texture2D(sky_tex, uv.zw, max(bias, 0.0)).rgb * sky_map_scale;
+    // read from the map's A (each level's index, sky.h) by fetches at known biases b: a fetch
+    // sees lambda + b clamped to the map's levels [0, top], so it gives lambda = a - b where
+    // 0 < a < top (a = top: lambda >= top - b). A read at b = 0 lost every magnified pixel
+    // (lambda < 0), and the horizon's grid row, where lambda jumps per triangle down to -5,
+    // drew a sawtooth. So b1 = top - foot reads lambda in [foot - top, foot] (a1 = top above
+    // it: no bias), and where a1 = 0, b2 = 2 top - foot reads it in [foot - 2 top, foot - top].
+    // Biases stay within the device's limit. Below the window, as where a quad's mediump uv
+    // are equal (lambda = -inf), the sky stays too sharp.
+    float b1 = min(sky_top_level - foot, sky_bias_max);
+    float b2 = min(2.0 * sky_top_level - foot, sky_bias_max);
+    float a1 = texture2D(sky_tex, uv.zw, b1).a * sky_level_scale;
+    float a2 = texture2D(sky_tex, uv.zw, b2).a * sky_level_scale;
+    float lambda = a1 > 0.02 ? a1 - b1 : a2 - b2;
+    vec3 sky = texture2D(sky_tex, uv.zw, clamp(foot - lambda, 0.0, sky_bias_max)).rgb * sky_map_scale;
 #endif
 
     // Refracted light, eq. 28.

@@ -11,6 +11,10 @@
 #include "parse.h"
 #include "tables.h"
 
+/* GLES 3.0's GL_MAX_TEXTURE_LOD_BIAS, the same enum as EXT_texture_lod_bias's (GLES2/gl2.h has
+ * neither) */
+#define MAX_TEXTURE_LOD_BIAS 0x84FD
+
 /* GLES 3.0 / OES_texture_half_float enums, not in gl2.h. */
 #define SWELL_GL_HALF_FLOAT_OES 0x8D61
 #define SWELL_GL_HALF_FLOAT     0x140B
@@ -152,6 +156,17 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
      * as that level's own texture without mips (renderer.c chain_tex), on every tier; GPUs
      * keep the per-pixel LOD, free there. */
     c->prefer_run_lod = software;
+    /* A shader's LOD bias is clamped to [-MAX_TEXTURE_LOD_BIAS, MAX_TEXTURE_LOD_BIAS] (GLES 3.0
+     * §3.8.10: at least 2; EXT_texture_lod_bias for GLES 2); ocean.frag's gles2-min sky filter
+     * keeps its biases within it. GLES 2 without the extension cannot say: assumed 16, what
+     * Mesa's drivers report. */
+    GLfloat bias_max = 0.0f;
+    if (es3 || parse_has_token(exts, "GL_EXT_texture_lod_bias")) {
+        glGetFloatv(MAX_TEXTURE_LOD_BIAS, &bias_max);
+        if ((rc = gpu_check("gpu: probing the LOD bias limit", err)))
+            return rc;
+    }
+    c->max_lod_bias = bias_max > 0.0f ? bias_max : 16.0f;
     return SWELL_OK;
 }
 

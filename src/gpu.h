@@ -33,6 +33,7 @@ struct gpu_caps {
                                  * rasteriser (gpu.c) */
     int glsl100_derivatives;    /* #version 100 shaders may enable GL_OES_standard_derivatives */
     int glsl100_texture_lod;    /* #version 100 shaders may enable GL_EXT_shader_texture_lod */
+    float max_lod_bias;         /* largest texture-lookup bias the device applies (gpu.c) */
     char vendor[64], renderer[128], version[128];
 };
 

@@ -34,7 +34,7 @@ enum ocean_uniform {
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
     OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
-    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP, OU_COUNT
+    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP, OU_SKY_BIAS_MAX, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -43,7 +43,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "wc_scale", "wc_bias", "lin_s0", "ds_offset", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
-    "sky_top_level"
+    "sky_top_level", "sky_bias_max"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -1033,6 +1033,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
     glUniform1f(u[OU_SKY_LEVEL_SCALE], 255.0f / (float)SKY_LEVEL_ALPHA);
     glUniform1f(u[OU_SKY_TOP], (float)(r->sky.levels - 1));
+    glUniform1f(u[OU_SKY_BIAS_MAX], r->gpu->caps.max_lod_bias);
     glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
     glUniform3fv(u[OU_SUN_IRR], 1, sun);
     glUniform3fv(u[OU_SEA_RADIANCE], 1, sea);
@@ -1342,5 +1343,8 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                 "own LOD, read from the map's alpha (eq. 27), effective Fresnel "
               "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"
             : "low: Hu 2006 single pass (Fresnel texture, bumped sky, Phong sun)");
-    (void)n;
+    if (n > 0 && (size_t)n < size && r->d.quality == QUALITY_HIGH && !r->run_lod &&
+        !shader_has_gradients(&r->gpu->caps))
+        snprintf(buf + n, size - (size_t)n, "sky LOD bias: at most %g (the device's limit)\n",
+                 (double)r->gpu->caps.max_lod_bias);
 }
