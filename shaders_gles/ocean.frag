@@ -177,14 +177,16 @@ void main()
     // (lambda < 0), and the horizon's grid row, where lambda jumps per triangle down to -5,
     // drew a sawtooth. So b1 = top - foot reads lambda in [foot - top, foot] (a1 = top above
     // it: no bias), and where a1 = 0, b2 = 2 top - foot reads it in [foot - 2 top, foot - top].
-    // Biases stay within the device's limit. Below the window, as where a quad's mediump uv
-    // are equal (lambda = -inf), the sky stays too sharp.
+    // a1 > 0.02: above level 0 by at least one step of the 8-bit A (1/28 level). Biases stay
+    // within the device's limit. Below the window, as where a quad's mediump uv are equal
+    // (lambda = -inf), the sky stays too sharp.
     float b1 = min(sky_top_level - foot, sky_bias_max);
     float b2 = min(2.0 * sky_top_level - foot, sky_bias_max);
     float a1 = texture2D(sky_tex, uv.zw, b1).a * sky_level_scale;
     float a2 = texture2D(sky_tex, uv.zw, b2).a * sky_level_scale;
     float lambda = a1 > 0.02 ? a1 - b1 : a2 - b2;
-    vec3 sky = texture2D(sky_tex, uv.zw, clamp(foot - lambda, 0.0, sky_bias_max)).rgb * sky_map_scale;
+    float bias = clamp(foot - lambda, 0.0, sky_bias_max);
+    vec3 sky = texture2D(sky_tex, uv.zw, bias).rgb * sky_map_scale;
 #endif
 
     // Refracted light, eq. 28.

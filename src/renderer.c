@@ -34,7 +34,8 @@ enum ocean_uniform {
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
     OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
-    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP, OU_SKY_BIAS_MAX, OU_COUNT
+    OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
+    OU_SKY_BIAS_MAX, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
