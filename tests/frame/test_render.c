@@ -499,6 +499,37 @@ static double rmse_rows(const uint8_t *a, const uint8_t *b, int y0, int y1)
     return sqrt(se / (W * (y1 - y0) * 3.0));
 }
 
+/* The horizon-row scene (test_horizon_row, test_bias_limit): a baked sea (tiny budget,
+ * 10 m/s), the surface camera pitched to -4 degrees, per-pixel LOD; the low sun ahead is at
+ * HORIZON_ROW_SUN degrees. Renders the best tier, which must be gles3 (textureGrad is the
+ * reference), into fx.img2. Returns the first pixel row below the horizon; *best the tier. */
+#define HORIZON_ROW_SUN 6.0f
+static int horizon_row_scene(struct camera *c, int *best, float *bias_limit)
+{
+    struct gpu probe;
+    struct swell_err err;
+    double dir[3], hx, hy;
+    assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
+    *best = probe.caps.tier_available;
+    *bias_limit = probe.caps.max_lod_bias;
+    gpu_shutdown(&probe);
+    if (*best != TIER_GLES3)
+        skip_unless_ci("the reference needs gles3's textureGrad");
+    use_baked(4u << 20, 10.0f);
+    surface_camera(c);
+    c->pitch_deg = -4.0f;
+    dir[0] = cos(glm_rad(c->heading_deg));
+    dir[1] = sin(glm_rad(c->heading_deg));
+    dir[2] = -1e-6;
+    assert_true(project_dir(c, dir, &hx, &hy));
+    int y0 = (int)ceil(hy);
+    assert_true(y0 > 0 && y0 + 8 < H);
+    g_pixel_lod = 1;
+    render(*best, QUALITY_HIGH, GEOMETRY_GRID, HORIZON_ROW_SUN, c->heading_deg, c, 3.0, fx.img2,
+           NULL);
+    return y0;
+}
+
 /* The grid row at the horizon, seen at a grazing angle towards a low sun: the reflected sky's
  * own LOD (lambda) jumps per triangle there, down to 5 levels below 0, while eq. 27's footprint
  * asks for level 6 and more. The bias path (gles2-min, and gles2-ext without texture LOD) must
@@ -510,31 +541,15 @@ static double rmse_rows(const uint8_t *a, const uint8_t *b, int y0, int y1)
 static void test_horizon_row(void **state)
 {
     struct camera c;
-    struct gpu probe;
-    struct swell_err err;
-    double dir[3], hx, hy;
-    const float elev = 6.0f;
+    int best;
+    float bias_limit;
     (void)state;
-    assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
-    int best = probe.caps.tier_available;
-    gpu_shutdown(&probe);
-    if (best != TIER_GLES3)
-        skip_unless_ci("the reference needs gles3's textureGrad");
-    use_baked(4u << 20, 10.0f);
-    surface_camera(&c);
-    c.pitch_deg = -4.0f;
-    dir[0] = cos(glm_rad(c.heading_deg));
-    dir[1] = sin(glm_rad(c.heading_deg));
-    dir[2] = -1e-6;
-    assert_true(project_dir(&c, dir, &hx, &hy));
-    int y0 = (int)ceil(hy), y1 = y0 + 8;
-    assert_true(y0 > 0 && y1 < H);
-    g_pixel_lod = 1;
-    render(best, QUALITY_HIGH, GEOMETRY_GRID, elev, c.heading_deg, &c, 3.0, fx.img2, NULL);
+    int y0 = horizon_row_scene(&c, &best, &bias_limit), y1 = y0 + 8;
     dump(fx.img2, "horizon_row_gles3");
     for (int tier = TIER_GLES2_MIN; tier < best; tier++) {
         char what[64];
-        render(tier, QUALITY_HIGH, GEOMETRY_GRID, elev, c.heading_deg, &c, 3.0, fx.img, NULL);
+        render(tier, QUALITY_HIGH, GEOMETRY_GRID, HORIZON_ROW_SUN, c.heading_deg, &c, 3.0, fx.img,
+               NULL);
         snprintf(what, sizeof(what), "horizon_row_%s", gpu_tier_name(tier));
         dump(fx.img, what);
         double rmse = rmse_rows(fx.img, fx.img2, y0, y1);
@@ -555,32 +570,16 @@ static void test_horizon_row(void **state)
 static void test_bias_limit(void **state)
 {
     struct camera c;
-    struct gpu probe;
-    struct swell_err err;
-    double dir[3], hx, hy;
-    const float elev = 6.0f, limits[3] = { 16.0f, 4.0f, 2.0f }, bound[3] = { 0.0f, 5.3f, 9.0f };
+    int best;
+    float device;
+    const float limits[3] = { 16.0f, 4.0f, 2.0f }, bound[3] = { 0.0f, 5.3f, 9.0f };
     (void)state;
-    assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
-    int best = probe.caps.tier_available;
-    float device = probe.caps.max_lod_bias;
-    gpu_shutdown(&probe);
-    if (best != TIER_GLES3)
-        skip_unless_ci("the reference needs gles3's textureGrad");
+    int y0 = horizon_row_scene(&c, &best, &device);
     assert_true(device >= 16.0f);   /* llvmpipe's: the limits below are the shader's own */
-    use_baked(4u << 20, 10.0f);
-    surface_camera(&c);
-    c.pitch_deg = -4.0f;
-    dir[0] = cos(glm_rad(c.heading_deg));
-    dir[1] = sin(glm_rad(c.heading_deg));
-    dir[2] = -1e-6;
-    assert_true(project_dir(&c, dir, &hx, &hy));
-    int y0 = (int)ceil(hy);
-    g_pixel_lod = 1;
-    render(best, QUALITY_HIGH, GEOMETRY_GRID, elev, c.heading_deg, &c, 3.0, fx.img2, NULL);
     for (int i = 0; i < 3; i++) {
         g_bias_max = limits[i];
-        render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, elev, c.heading_deg, &c, 3.0,
-               fx.img, NULL);
+        render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, HORIZON_ROW_SUN, c.heading_deg, &c,
+               3.0, fx.img, NULL);
         double row = rmse_rows(fx.img, fx.img2, y0, y0 + 8);
         if (i == 0)
             memcpy(fx.img3, fx.img, (size_t)W * H * 4);
