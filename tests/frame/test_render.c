@@ -190,10 +190,15 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
 /* A test that needs what this device lacks: skipped on a developer's machine, a failure under
  * CI=true (CI runs on llvmpipe, which has everything these tests ask for: no skip hides there;
  * cmocka counts a skip as no failure, so run-tests.sh would not see it). */
-static void skip_unless_ci(const char *why)
+static int under_ci(void)
 {
     const char *ci = getenv("CI");
-    if (ci && strcmp(ci, "true") == 0)
+    return ci && strcmp(ci, "true") == 0;
+}
+
+static void skip_unless_ci(const char *why)
+{
+    if (under_ci())
         fail_msg("would skip under CI=true: %s", why);
     print_message("skipped: %s\n", why);
     skip();
@@ -738,13 +743,12 @@ int main(void)
 {
     struct platform_desc pd = { 0 };
     struct swell_err err = { 0 };
-    const char *ci = getenv("CI");
     pd.kind = PLATFORM_SURFACELESS;
     pd.width = W;
     pd.height = H;
     pd.gles_major = 3;
     if (platform_open(&pd, &fx.ph, &err)) {
-        if (ci && strcmp(ci, "true") == 0) {
+        if (under_ci()) {
             fprintf(stderr, "test_render: no EGL device under CI=true: %s\n", err.msg);
             return 1;
         }
