@@ -20,9 +20,10 @@ attribute vec2 a_grid;                  // (i, j) / (w - 1, h - 1)
 uniform vec3 grid_fwd;                  // camera basis, world
 uniform vec3 grid_right;
 uniform vec3 grid_up;
-uniform vec4 grid_frame;                // tan(fov_x / 2), tan(fov_y / 2), altitude, ray plane
-uniform vec4 grid_range;                // NDC x of the first and last column, y of the first
-                                        // (horizon) and last row
+uniform vec4 grid_frame;                // column shares at the screen's edges (grid.h
+                                        // col_split), altitude, projector height
+uniform vec4 grid_range;                // column angles: left, screen left, right, right edge
+uniform vec4 grid_rows;                 // row angles: top, screen bottom, bottom; its share
 uniform vec3 grid_step;                 // one cell in a_grid units (x, y); far distance, m
 uniform vec4 disp_scale[4];             // RGBA8 dequantisation of each pattern's table; w: the
 uniform vec4 disp_bias[4];              // blend weight of loop frame b (frames a, b bound)
@@ -42,12 +43,18 @@ uniform sampler2D disp_a3;
 uniform sampler2D disp_b3;
 #endif
 
-// The sea-plane point of grid parameter g: its ray meets the plane raised to the highest crest
-// (rest points stay camera-relative), rays at or above the horizon end at the far distance.
+// The sea-plane point of grid parameter g: its ray from the projector (grid.h: the warped
+// angles of grid_warp) meets the sea plane, rays at or above the horizon end at the far
+// distance; rest points are camera-relative.
 vec2 grid_rest(vec2 g)
 {
-    float sx = mix(grid_range.x, grid_range.y, g.x), sy = mix(grid_range.z, grid_range.w, g.y);
-    vec3 d = grid_fwd + sx * grid_frame.x * grid_right + sy * grid_frame.y * grid_up;
+    float ax = g.x < grid_frame.x ? mix(grid_range.x, grid_range.y, g.x / grid_frame.x)
+             : g.x < grid_frame.y ? mix(grid_range.y, grid_range.z,
+                                        (g.x - grid_frame.x) / (grid_frame.y - grid_frame.x))
+             : mix(grid_range.z, grid_range.w, (g.x - grid_frame.y) / max(1.0 - grid_frame.y, 1e-6));
+    float ay = g.y < grid_rows.w ? mix(grid_rows.x, grid_rows.y, g.y / grid_rows.w)
+             : mix(grid_rows.y, grid_rows.z, (g.y - grid_rows.w) / max(1.0 - grid_rows.w, 1e-6));
+    vec3 d = grid_fwd + tan(min(ax, 1.5)) * grid_right + tan(ay) * grid_up;
     float dxy = length(d.xy);
     float t = -d.z * grid_step.z > grid_frame.w * dxy ? grid_frame.w / -d.z
                                                       : grid_step.z / max(dxy, 1e-12);

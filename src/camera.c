@@ -77,12 +77,13 @@ void camera_view_rel(const struct camera *c, mat4 view)
     glm_look(eye, fwd, up, view);
 }
 
-/* Near/far from altitude when not given: near a tenth of the height above the sea (at least
- * 5 cm) keeps the nearest waves in front of it; far reaches past the geometric horizon of a
- * curved Earth, 2 sqrt(2 R h), with a 50 km floor for surface views. */
-static void clip_planes(const struct camera *c, float *n, float *f)
+/* Near/far from altitude when not given: near a tenth of the height above the local surface
+ * (at least 5 cm; a camera CAMERA_CLEARANCE_M above a crest still sees the water below it)
+ * keeps the nearest waves in front of it; far reaches past the geometric horizon of a curved
+ * Earth, 2 sqrt(2 R h), with a 50 km floor for surface views. */
+void camera_clip_planes(const struct camera *c, float *n, float *f)
 {
-    double alt = fabs(c->pos[2]);
+    double alt = fabs(c->pos[2] - c->surface_z_m);
     double near_m = c->near_m > 0.0f ? c->near_m : fmax(0.05, fmin(0.1 * alt, 100.0));
     double far_m = c->far_m > 0.0f ? c->far_m
                                     : fmax(5.0e4, 4.0 * sqrt(2.0 * 6.371e6 * fmax(alt, 1.0)));
@@ -96,6 +97,6 @@ void camera_projection(const struct camera *c, float aspect, mat4 proj)
 {
     float n, f;
     float fov = c->fov_y_deg > 0.0f ? c->fov_y_deg : 45.0f;
-    clip_planes(c, &n, &f);
+    camera_clip_planes(c, &n, &f);
     glm_perspective_rh_no(glm_rad(fov), aspect > 0.0f ? aspect : 1.0f, n, f, proj);
 }

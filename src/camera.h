@@ -16,8 +16,15 @@ struct camera {
     float heading_deg;      /* default 0 */
     float pitch_deg;        /* default -10 */
     float fov_y_deg;        /* vertical field of view; default 45 */
-    float near_m, far_m;    /* clip planes; default 0 = chosen from altitude */
+    float near_m, far_m;    /* clip planes; default 0 = chosen from the height above the
+                               local surface */
+    double surface_z_m;     /* height of the sea surface under the camera, m; default 0 = the
+                               mean sea level (the renderer fills it, renderer_frame) */
 };
+
+/* Nothing draws a camera closer than this above the local sea surface (renderer_frame raises
+ * it, as a boat's or a buoy's camera floats): swell has no view from under the water. */
+#define CAMERA_CLEARANCE_M 0.3
 
 enum camera_path {
     CAMERA_PATH_NONE = 0,   /* fixed camera as given */
@@ -36,5 +43,7 @@ const char *camera_path_name(int path);
 /* Camera-relative view (translation removed) and projection for an aspect ratio. */
 void camera_view_rel(const struct camera *c, mat4 view);
 void camera_projection(const struct camera *c, float aspect, mat4 proj);
+/* The clip planes camera_projection uses, m. */
+void camera_clip_planes(const struct camera *c, float *near_m, float *far_m);
 
 #endif

@@ -6,7 +6,7 @@
 #include "grid.h"
 #include "quantize.h"
 
-#define GRID_MARGIN 0.15      /* NDC margin so displaced edges never uncover the screen border */
+#define GRID_MARGIN 0.02      /* NDC beyond the bounding box of what displacement can reach */
 #define FILTER_NMIN 2.0f      /* Bruneton eq. 2: waves shorter than Nmin cells are cancelled... */
 #define FILTER_NMAX 4.0f      /* ...and kept in full from Nmax cells up */
 #define NEAR_N 129            /* near patch vertices per side (128 cells) */
@@ -946,18 +946,17 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
     }
 }
 
-static float far_distance(const struct camera *cam, float aspect)
+static float far_distance(const struct camera *cam)
 {
-    mat4 proj;
-    camera_projection(cam, aspect, proj);
-    /* perspective: P[3][2] = -2fn/(f-n), P[2][2] = -(f+n)/(f-n) => f = P[3][2] / (P[2][2] + 1) */
-    float f = proj[3][2] / (proj[2][2] + 1.0f);
-    return 0.9f * (f > 0.0f ? f : 5.0e4f);
+    float n, f;
+    camera_clip_planes(cam, &n, &f);
+    return 0.9f * f;
 }
 
-static void basis(const struct camera *cam, double fwd[3], double right[3], double up[3])
+/* Camera basis for heading h and pitch p (degrees): forward, right (horizontal), up. */
+static void basis_hp(double h_deg, double p_deg, double fwd[3], double right[3], double up[3])
 {
-    double h = cam->heading_deg * M_PI / 180.0, p = cam->pitch_deg * M_PI / 180.0;
+    double h = h_deg * M_PI / 180.0, p = p_deg * M_PI / 180.0;
     fwd[0] = cos(p) * cos(h); fwd[1] = cos(p) * sin(h); fwd[2] = sin(p);
     right[0] = sin(h); right[1] = -cos(h); right[2] = 0.0;
     up[0] = right[1] * fwd[2] - right[2] * fwd[1];
@@ -965,35 +964,169 @@ static void basis(const struct camera *cam, double fwd[3], double right[3], doub
     up[2] = right[0] * fwd[1] - right[1] * fwd[0];
 }
 
-/* Bruneton 2010 §3 / Hinsinger 2002: screen-space grid rays intersected with the sea plane. */
-/* The projected grid's frame for a camera (grid.h); 0 when no sea is in view. */
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+#define HULL_MAX 128          /* 32 polytope vertices x 4 corners of the choppy dilation */
+#define PROJ_COS_MIN 0.15     /* projector rays stay within 81 degrees of its axis... */
+#define PROJ_STEP_DEG 2.0     /* ...lowering its pitch by this step until they do */
+#define SCREEN_SHARE 0.8      /* of the grid's rows and columns, on the camera's screen */
+
+/* Sea-plane points (camera-relative x, y) that bound every rest position whose displaced
+ * image can lie in the camera's frustum: the frustum (near plane to dmax along the view) cut
+ * by the slab z in [zlo, zhi] that displacement can reach has as vertices its corners inside
+ * the slab and its 12 edges' crossings of the two planes; their horizontal shadow, widened by
+ * the largest sideways displacement (a square of half-side chop), is convex, so the convex hull
+ * of these points contains it. Returns the number of points. */
+static int frustum_slab_points(const double fwd[3], const double right[3], const double up[3],
+                               double tx, double ty, double n, double f, double zlo, double zhi,
+                               double chop, double q[HULL_MAX][2])
+{
+    double c[8][3];
+    static const int edge[12][2] = { { 0, 1 }, { 1, 3 }, { 3, 2 }, { 2, 0 }, { 4, 5 }, { 5, 7 },
+                                     { 7, 6 }, { 6, 4 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
+    double pts[32][2];
+    int np = 0, nq = 0;
+    for (int k = 0; k < 8; k++) {
+        double a = k & 1 ? 1.0 : -1.0, b = k & 2 ? 1.0 : -1.0, d = k & 4 ? f : n;
+        for (int e = 0; e < 3; e++)
+            c[k][e] = d * (fwd[e] + a * tx * right[e] + b * ty * up[e]);
+        if (c[k][2] >= zlo && c[k][2] <= zhi) {
+            pts[np][0] = c[k][0];
+            pts[np++][1] = c[k][1];
+        }
+    }
+    for (int k = 0; k < 12; k++) {
+        const double *a = c[edge[k][0]], *b = c[edge[k][1]];
+        for (int s = 0; s < 2; s++) {
+            double z = s ? zhi : zlo, da = a[2] - z, db = b[2] - z;
+            if ((da < 0.0) != (db < 0.0)) {
+                double u = da / (da - db);
+                pts[np][0] = a[0] + u * (b[0] - a[0]);
+                pts[np++][1] = a[1] + u * (b[1] - a[1]);
+            }
+        }
+    }
+    for (int k = 0; k < np; k++)
+        for (int s = 0; s < 4; s++) {
+            q[nq][0] = pts[k][0] + (s & 1 ? chop : -chop);
+            q[nq++][1] = pts[k][1] + (s & 2 ? chop : -chop);
+        }
+    return nq;
+}
+
+/* The projected grid's frame for a camera (grid.h); 0 when no sea is in view.
+ *
+ * Coverage by construction: the grid spans, in the projector's NDC, the bounding box of the
+ * points frustum_slab_points finds; the projective map from the sea plane to that NDC keeps
+ * convex sets convex where every point is in front of the projector, so the box holds every
+ * rest position a visible surface point can come from, and the displaced grid's border lies
+ * outside the frustum. A ray from the camera (kept CAMERA_CLEARANCE_M above the local surface
+ * by the renderer) that goes below the slab within the frustum must then cross the displaced
+ * grid. The projector is the camera where that is possible (views from above every crest: the
+ * grid's rows follow the screen's), else raised above the crests and pitched down until the
+ * points near and behind the camera are in front of it. */
 static int projection_frame(const struct grid *g, const struct camera *cam, float aspect,
                             struct grid_projection *p)
 {
-    double alt = cam->pos[2] > 0.5 ? cam->pos[2] : 0.5;
     double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
+    double cf[3], cr[3], cu[3], q[HULL_MAX][2];
+    float near_m, far_m;
     memset(p, 0, sizeof(*p));
-    p->alt = alt;
-    /* Rays meet a plane raised by the highest crest (at most half-way up to the camera), so
-     * crests near the screen's bottom edge never uncover it; rest points stay on z = -alt. */
-    p->alt_ray = fmax(alt - g->crest_m, 0.5 * alt);
-    p->ty = tan(0.5 * fov);
-    p->tx = p->ty * aspect;
-    p->dmax = far_distance(cam, aspect);
-    /* Choppy displacement pulls the edge vertices sideways by up to chop_m, and a crest lifts a
-     * bottom-edge vertex by up to crest_m; at the nearest visible distance (about alt_ray) that
-     * is an angle of (chop_m + crest_m) / alt_ray, so widen the grid's margin by as much in NDC
-     * (the storm golden frame showed an uncovered corner with the sideways term alone). */
-    p->margin = GRID_MARGIN + fmin((g->chop_m + g->crest_m) / p->alt_ray / p->ty, 1.5);
-    p->top = 1.0 + p->margin;
-    p->bot = -1.0 - p->margin;
-    basis(cam, p->fwd, p->right, p->up);
-    if (p->up[2] * p->ty > 1e-9) {
-        double hz = -p->fwd[2] / (p->ty * p->up[2]);   /* NDC y of the horizon */
-        if (hz < p->top)
-            p->top = hz;
+    camera_clip_planes(cam, &near_m, &far_m);
+    double ty = tan(0.5 * fov), tx = ty * aspect;
+    p->alt = cam->pos[2];
+    p->dmax = far_distance(cam);
+    basis_hp(cam->heading_deg, cam->pitch_deg, cf, cr, cu);
+    int nq = frustum_slab_points(cf, cr, cu, tx, ty, near_m, far_m,
+                                 -p->alt - g->crest_m, -p->alt + g->crest_m, g->chop_m, q);
+    if (nq == 0)
+        return 0;
+    p->alt_ray = fmax(p->alt, fmax(g->crest_m + g->chop_m, 1.0));
+    /* the projector's pitch: the camera's (at most level), lowered until every point that is
+     * not well ahead (q . heading < half its distance) is within acos(PROJ_COS_MIN) of its axis;
+     * points well ahead are in front of any projector pitched down */
+    double hx = cos(cam->heading_deg * M_PI / 180.0), hy = sin(cam->heading_deg * M_PI / 180.0);
+    double pitch = fmin(cam->pitch_deg, -1.0);
+    for (;; pitch -= PROJ_STEP_DEG) {
+        if (pitch < -89.0)
+            pitch = -89.0;
+        basis_hp(cam->heading_deg, pitch, p->fwd, p->right, p->up);
+        int ok = 1;
+        for (int k = 0; k < nq && ok; k++) {
+            double d[3] = { q[k][0], q[k][1], -p->alt_ray };
+            double dist = sqrt(q[k][0] * q[k][0] + q[k][1] * q[k][1]);
+            if (q[k][0] * hx + q[k][1] * hy >= 0.5 * dist)
+                continue;
+            ok = dot3(d, p->fwd) >= PROJ_COS_MIN * sqrt(dot3(d, d));
+        }
+        if (ok || pitch <= -89.0)
+            break;
     }
-    return p->top > p->bot;
+    /* the points' angles from the projector's axis, across (phi) and up (theta) */
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (int k = 0; k < nq; k++) {
+        double d[3] = { q[k][0], q[k][1], -p->alt_ray };
+        double fz = fmax(dot3(d, p->fwd), 1e-9 * sqrt(dot3(d, d)));
+        double ax = atan(dot3(d, p->right) / fz), ay = atan(dot3(d, p->up) / fz);
+        x0 = fmin(x0, ax);
+        x1 = fmax(x1, ax);
+        y0 = fmin(y0, ay);
+        y1 = fmax(y1, ay);
+    }
+    /* a hair beyond the box, so float rounding of the extreme rays never falls inside it */
+    x0 -= GRID_MARGIN;
+    x1 += GRID_MARGIN;
+    y0 -= GRID_MARGIN;
+    y1 += GRID_MARGIN;
+    double hz = -pitch * M_PI / 180.0;                  /* the projector's horizon */
+    if (hz < y1)
+        y1 = hz - 1e-4;
+    if (!(y1 > y0))
+        return 0;
+    /* The screen's part of the range: its side edges' angle, and its bottom edge's ray where
+     * it meets the sea plane, seen from the projector. Those spans get SCREEN_SHARE of the
+     * columns and rows (more where uniform angles would give them more). */
+    double sx = fmin(atan(tx), fmax(x1, -x1)), sb = y0;
+    double bot[3];
+    for (int c = 0; c < 3; c++)
+        bot[c] = cf[c] - ty * cu[c];
+    if (bot[2] < 0.0 && p->alt > 0.0) {
+        double t = p->alt / -bot[2], d[3] = { t * bot[0], t * bot[1], -p->alt_ray };
+        double fz = dot3(d, p->fwd);
+        if (fz > 0.0)
+            sb = atan(dot3(d, p->up) / fz) - GRID_MARGIN;
+    }
+    sb = fmin(fmax(sb, y0), y1);
+    p->row_ang[0] = y1;
+    p->row_ang[1] = sb;
+    p->row_ang[2] = y0;
+    p->row_split = y1 - y0 > 0.0 ? fmax(SCREEN_SHARE, (y1 - sb) / (y1 - y0)) : 1.0;
+    if (sb <= y0)
+        p->row_split = 1.0;
+    double c0 = fmax(-sx, x0), c1 = fmin(sx, x1), span = x1 - x0;
+    double inner = fmax(SCREEN_SHARE, (c1 - c0) / span);
+    double side_l = c0 - x0, side_r = x1 - c1;
+    p->col_ang[0] = x0;
+    p->col_ang[1] = c0;
+    p->col_ang[2] = c1;
+    p->col_ang[3] = x1;
+    p->col_split[0] = side_l + side_r > 0.0 ? (1.0 - inner) * side_l / (side_l + side_r) : 0.0;
+    p->col_split[1] = p->col_split[0] + inner;
+    return 1;
+}
+
+double grid_warp(double x, const double *a, const double *s, int n)
+{
+    double lo = 0.0;
+    for (int k = 0; k < n - 2; k++) {
+        if (x < s[k])
+            return a[k] + (a[k + 1] - a[k]) * (x - lo) / (s[k] - lo);
+        lo = s[k];
+    }
+    return lo < 1.0 ? a[n - 2] + (a[n - 1] - a[n - 2]) * (x - lo) / (1.0 - lo) : a[n - 1];
 }
 
 /* Footprint of vertex (i, j) of the projected grid: the larger distance to the next vertex
@@ -1041,23 +1174,22 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
     if (!projection_frame(g, cam, aspect, &p))
         return 0;
     const double *fwd = p.fwd, *right = p.right, *up = p.up;
-    double alt_ray = p.alt_ray, tx = p.tx, ty = p.ty, dmax = p.dmax;
-    double margin = p.margin, top = p.top, bot = p.bot;
+    double alt_ray = p.alt_ray, dmax = p.dmax;
     const int w = g->w, h = g->h;
     double *restrict col_sx = g->col_sx;
     float *restrict row_x = g->row_x, *restrict row_y = g->row_y;
-    /* Per row the ray is d = row + sx tx right with row = fwd + sy ty up; right is horizontal, so
-     * d_z and the sea-plane hit distance alt_ray / -d_z are the row's; a ray hits the plane
-     * within dmax when |d_xy| < -d_z dmax / alt_ray. */
-    double rgt[2] = { tx * right[0], tx * right[1] };
-    double dsx = 2.0 * (1.0 + margin) / (w - 1);   /* NDC x step between columns */
+    /* Per row the ray is d = row + sx right with row = fwd + sy up (sx, sy: the tangents of the
+     * warped angles, grid_warp); right is horizontal, so d_z and the sea-plane hit distance
+     * alt_ray / -d_z are the row's; a ray hits the plane within dmax when
+     * |d_xy| < -d_z dmax / alt_ray. */
+    double rgt[2] = { right[0], right[1] };
     for (int i = 0; i < g->ws; i++)
-        col_sx[i] = -1.0 - margin + dsx * i;
+        col_sx[i] = tan(grid_warp(i < w ? (double)i / (w - 1) : 1.0, p.col_ang, p.col_split, 4));
     for (int j = 0; j < h; j++) {
-        double sy = top + (bot - top) * j / (h - 1);
+        double sy = tan(grid_warp((double)j / (h - 1), p.row_ang, &p.row_split, 3));
         double row[3], t_row = 0.0, lim2 = -1.0;
         for (int c = 0; c < 3; c++)
-            row[c] = fwd[c] + sy * ty * up[c];
+            row[c] = fwd[c] + sy * up[c];
         if (-row[2] > 0.0) {
             double lim = -row[2] * dmax / alt_ray;
             t_row = alt_ray / -row[2];
@@ -1146,7 +1278,7 @@ static int update_patches(struct grid *g, const struct camera *cam, float aspect
     double cell = 2.0 * half / (NEAR_N - 1);
     double ox = -(cam->pos[0] - cell * floor(cam->pos[0] / cell));
     double oy = -(cam->pos[1] - cell * floor(cam->pos[1] / cell));
-    double dmax = far_distance(cam, aspect);
+    double dmax = far_distance(cam);
     double q = pow(fmax(dmax / half, 1.0001), 1.0 / FAR_RINGS);
     int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per;
     double inv = 1.0 / (NEAR_N - 1);
@@ -1300,7 +1432,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             moment_pass(g, &pf[i], verts);
     }
     float foot_disp = nd ? displace(g, df, nd) : -INFINITY;
-    write_vertices(g, verts, (float)-(cam->pos[2] > 0.5 ? cam->pos[2] : 0.5), np > 0, foot_disp);
+    write_vertices(g, verts, (float)-cam->pos[2], np > 0, foot_disp);
     row_distances(g);
     return n;
 }
@@ -1308,7 +1440,8 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
 /* The projected grid's frame for a camera, as update_projected() builds it (tiers with vertex
  * texture fetch build the vertices in ocean.vert from it). Also fills the rows' distances from
  * each row's nearest ray (the centre column's: right is horizontal and perpendicular to the
- * view's azimuth, so along a row of constant NDC y the horizontal distance is least at x = 0).
+ * view's azimuth, so along a row of constant NDC y the horizontal distance is least at x = 0,
+ * or at the column nearest it).
  * Returns 0 when no sea is in view. */
 int grid_projection(struct grid *g, const struct camera *cam, float aspect,
                     struct grid_projection *p)
@@ -1317,9 +1450,10 @@ int grid_projection(struct grid *g, const struct camera *cam, float aspect,
         return 0;
     for (int r = 0; r < g->rows; r++) {
         /* row r spans grid rows r (farther) and r + 1 (nearer) */
-        double sy = p->top + (p->bot - p->top) * (r + 1) / (g->h - 1), d[3], dxy, t;
+        double sy = tan(grid_warp((double)(r + 1) / (g->h - 1), p->row_ang, &p->row_split, 3));
+        double sx = tan(fmin(fmax(0.0, p->col_ang[0]), p->col_ang[3])), d[3], dxy, t;
         for (int c = 0; c < 3; c++)
-            d[c] = p->fwd[c] + sy * p->ty * p->up[c];
+            d[c] = p->fwd[c] + sx * p->right[c] + sy * p->up[c];
         dxy = sqrt(d[0] * d[0] + d[1] * d[1]);
         t = -d[2] * p->dmax > p->alt_ray * dxy ? p->alt_ray / -d[2] : p->dmax / fmax(dxy, 1e-12);
         g->row_foot[r] = (float)(t * t * dxy * dxy);

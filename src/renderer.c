@@ -21,6 +21,7 @@
 #include "grid.h"
 #include "quantize.h"
 #include "renderer.h"
+#include "sea.h"
 #include "shader.h"
 #include "sky.h"
 #include "stream.h"
@@ -85,11 +86,11 @@ static const struct shader_attrib ocean_attribs[A_COUNT] = {
 
 /* Vertex-texture-fetch grid (ocean.vert VTF_PATTERNS): its uniforms, per pattern. */
 enum vtf_uniform {
-    VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_STEP, VU_SCALE, VU_BIAS, VU_PATTERN,
+    VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_ROWS, VU_STEP, VU_SCALE, VU_BIAS, VU_PATTERN,
     VU_A0, VU_B0, VU_A1, VU_B1, VU_A2, VU_B2, VU_A3, VU_B3, VU_COUNT
 };
 static const char *const vtf_uniform_names[VU_COUNT] = {
-    "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_step", "disp_scale",
+    "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_rows", "grid_step", "disp_scale",
     "disp_bias", "disp_pattern", "disp_a0", "disp_b0", "disp_a1", "disp_b1", "disp_a2", "disp_b2",
     "disp_a3", "disp_b3"
 };
@@ -148,6 +149,7 @@ struct renderer {
     int disp_ab[SWELL_MAX_PATTERNS][2];       /* this frame's a and b: indices into the pair */
     float disp_w[SWELL_MAX_PATTERNS];
     struct grid_projection proj;
+    double camera_raise_m;      /* how far the last frame raised the camera (renderer_frame) */
     GLuint fresnel_tex, vbo, ibo, quad_vbo;
     struct chain_tex sky_tex;
     struct chain_tex sky_display_tex; /* the sky map tone-mapped: background, low quality */
@@ -609,9 +611,12 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
     glUniform3fv(u[VU_FWD], 1, v[0]);
     glUniform3fv(u[VU_RIGHT], 1, v[1]);
     glUniform3fv(u[VU_UP], 1, v[2]);
-    glUniform4f(u[VU_FRAME], (float)p->tx, (float)p->ty, (float)p->alt, (float)p->alt_ray);
-    glUniform4f(u[VU_RANGE], (float)(-1.0 - p->margin), (float)(1.0 + p->margin), (float)p->top,
-                (float)p->bot);
+    glUniform4f(u[VU_FRAME], (float)p->col_split[0], (float)p->col_split[1], (float)p->alt,
+                (float)p->alt_ray);
+    glUniform4f(u[VU_RANGE], (float)p->col_ang[0], (float)p->col_ang[1], (float)p->col_ang[2],
+                (float)p->col_ang[3]);
+    glUniform4f(u[VU_ROWS], (float)p->row_ang[0], (float)p->row_ang[1], (float)p->row_ang[2],
+                (float)p->row_split);
     glUniform3f(u[VU_STEP], 1.0f / (float)(w - 1), 1.0f / (float)(h - 1), (float)p->dmax);
     glUniform4fv(u[VU_SCALE], SWELL_MAX_PATTERNS, &sc[0][0]);
     glUniform4fv(u[VU_BIAS], SWELL_MAX_PATTERNS, &bi[0][0]);
@@ -1227,10 +1232,21 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
     }
 }
 
-int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
+int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s, int width,
                    int height, struct swell_err *err)
 {
     mat4 view, proj, world_to_clip;
+    /* The camera floats CAMERA_CLEARANCE_M above the surface the renderer draws under it (the
+     * same displacement, sea.h), so no view is from under the water; the projected grid's
+     * coverage argument (grid.c) rests on it. */
+    struct camera cam_local = *user_cam;
+    const struct camera *cam = &cam_local;
+    cam_local.surface_z_m = sea_surface_height(r->t, user_cam->pos[0], user_cam->pos[1], t_s);
+    r->camera_raise_m = 0.0;
+    if (cam_local.pos[2] < cam_local.surface_z_m + CAMERA_CLEARANCE_M) {
+        r->camera_raise_m = cam_local.surface_z_m + CAMERA_CLEARANCE_M - cam_local.pos[2];
+        cam_local.pos[2] = cam_local.surface_z_m + CAMERA_CLEARANCE_M;
+    }
     float aspect = height > 0 ? (float)width / (float)height : 1.0f;
     GLint depth_bits = 0;
     int nidx;
@@ -1252,7 +1268,10 @@ int renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
-    glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug the tests see */
+    if (r->d.debug_uncovered)
+        glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug */
+    else
+        glClearColor(0.02f, 0.05f, 0.07f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
     draw_sky(r, cam, world_to_clip, width, height);
     if (nidx > 0) {
@@ -1301,6 +1320,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     out->sea_draws_resolved_drop = r->draws_resolved_drop;
     out->run_lod = r->run_lod;
     out->vtf = r->vtf;
+    out->camera_raise_m = r->camera_raise_m;
 }
 
 void renderer_describe(const struct renderer *r, char *buf, size_t size)

@@ -35,6 +35,10 @@ struct renderer_desc {
                                          * tests compare the two) */
     int keep_resolved;                  /* 1: drop a pattern only at its 1x1 level, not where
                                          * its mip means are nearly flat (tests compare) */
+    int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
+                                         * the sea, so a pixel neither covers shows (swell
+                                         * --debug uncovered, the frame tests); default 0: a
+                                         * dark sea colour */
 };
 
 struct renderer_stats {
@@ -48,12 +52,17 @@ struct renderer_stats {
                                          * are nearly flat there, before its 1x1 level */
     int run_lod;                        /* pattern tables fetched at one LOD per run */
     int vtf;                            /* grid built and displaced in the vertex shader */
+    double camera_raise_m;              /* the last frame drew the camera this much higher, m:
+                                         * it was less than CAMERA_CLEARANCE_M above the local
+                                         * surface (renderer_frame) */
 };
 
 struct renderer;
 
 int  renderer_create(const struct renderer_desc *d, struct renderer **out, struct swell_err *err);
-/* Draw one frame at time t_s (s) into the framebuffer bound now, viewport width x height. */
+/* Draw one frame at time t_s (s) into the framebuffer bound now, viewport width x height.
+ * A camera less than CAMERA_CLEARANCE_M above the sea surface under it (the displaced
+ * surface this frame draws) is drawn from that height above it instead. */
 int  renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
                     int height, struct swell_err *err);
 /* Move the sun (degrees above the horizon in (0, 90], azimuth CCW from +x): re-bakes the sky

@@ -44,6 +44,7 @@ struct options {
     struct camera camera;
     int quality, geometry, tier;
     int pixel_lod;              /* --lod pixel */
+    int debug_uncovered;        /* --debug uncovered */
     int verbose;
     int bench;                  /* --bench: time frames against the baseline quad */
     int warmup;                 /* --warmup: untimed bench frames; -1 = default */
@@ -99,6 +100,9 @@ static void usage(FILE *f)
 "  --results FILE    write the measurements as JSON (atomically)                 [none]\n"
 "  --scene NAME      scene name recorded in the results             [tables or preset]\n"
 "Other:\n"
+"  --debug uncovered clear to magenta (255, 0, 255) before the sky and the sea are drawn,\n"
+"                    so a pixel neither covers shows; the camera is kept 0.3 m above the\n"
+"                    sea surface under it in every mode (no view from under the water)\n"
 "  --verbose         print the chosen device, mode, EGL config and per-frame stats\n"
 "  --help            this text\n"
 "  --version         print the version\n"
@@ -161,7 +165,7 @@ static int is_value_option(const char *a)
         "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
         "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode", "--kms-api",
-        "--warmup", "--results", "--scene",
+        "--warmup", "--results", "--scene", "--debug",
     };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (!strcmp(a, names[i]))
@@ -287,6 +291,12 @@ static int parse_args(int argc, char **argv, struct options *o)
                 r = swell_fail(&err, SWELL_E_ARG, "--connector: empty name (e.g. HDMI-A-1)");
         } else if (!strcmp(a, "--mode")) {
             r = parse_mode(a, v, &o->platform, &err);
+        } else if (!strcmp(a, "--debug")) {
+            if (!strcmp(v, "uncovered"))
+                o->debug_uncovered = 1;
+            else
+                r = swell_fail(&err, SWELL_E_ARG, "--debug: '%s' is not uncovered (the only "
+                               "debug view)", v);
         } else if (!strcmp(a, "--warmup")) {
             r = parse_int(a, v, 0, 100000, &o->warmup, &err);
         } else if (!strcmp(a, "--results")) {
@@ -552,7 +562,7 @@ int main(int argc, char **argv)
     struct renderer_desc rd = {
         .tables = &tables, .gpu = &gpu, .quality = o.quality, .geometry = o.geometry,
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
-        .pixel_lod = o.pixel_lod,
+        .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
     };
     if (renderer_create(&rd, &r, &err))
         goto fail_gpu;

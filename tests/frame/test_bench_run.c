@@ -38,7 +38,8 @@ static void test_bench_run(void **state)
     struct gpu g;
     memset(&g, 0, sizeof g);
     assert_int_equal(gpu_init(&g, TIER_GLES2_MIN, t.state.budget_bytes, &err), 0);
-    struct renderer_desc rd = { .tables = &t, .gpu = &g, .quality = QUALITY_LOW };
+    struct renderer_desc rd = { .tables = &t, .gpu = &g, .quality = QUALITY_LOW,
+                                .debug_uncovered = 1 };
     struct renderer *r = NULL;
     if (renderer_create(&rd, &r, &err))
         fail_msg("renderer_create: %s", err.msg);

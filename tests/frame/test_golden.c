@@ -42,6 +42,7 @@ static void run_scene(const struct scene *s)
     snprintf(golden, sizeof golden, "tests/golden/%s.png", s->name);
     snprintf(cmd, sizeof cmd,
              "%s/swell --platform surfaceless --tier gles2-min --lod pixel --size 256x144 --time 3 "
+             "--debug uncovered "
              "--budget tiny %s --out %s > %s/golden_%s.log 2>&1",
              build, s->args, update ? golden : out, tmp, s->name);
     int rc = system(cmd);

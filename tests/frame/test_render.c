@@ -158,6 +158,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.fetch_all = g_fetch_all;
     d.pixel_lod = g_pixel_lod;
     d.keep_resolved = g_keep_resolved;
+    d.debug_uncovered = 1;
     rc = renderer_create(&d, &r, &err);
     if (rc)
         fail_msg("renderer_create: %s", err.msg);

@@ -14,6 +14,7 @@
 #include <cmocka.h>
 #include "grid.h"
 #include "quantize.h"
+#include "sea.h"
 #include "stream.h"
 
 #define F 4
@@ -328,10 +329,11 @@ static void test_projection_against_reference(void **state)
             for (int j = 0; j < h; j++)
                 for (int i = 0; i < w; i++) {
                     const float *vx = verts + (size_t)(j * w + i) * GRID_FLOATS;
-                    double sx = -1.0 - p.margin + 2.0 * (1.0 + p.margin) * i / (w - 1);
-                    double sy = p.top + (p.bot - p.top) * j / (h - 1), r[3];
+                    double sx = tan(grid_warp((double)i / (w - 1), p.col_ang, p.col_split, 4));
+                    double sy = tan(grid_warp((double)j / (h - 1), p.row_ang, &p.row_split, 3));
+                    double r[3];
                     for (int k = 0; k < 3; k++)
-                        r[k] = p.fwd[k] + sy * p.ty * p.up[k] + sx * p.tx * p.right[k];
+                        r[k] = p.fwd[k] + sy * p.up[k] + sx * p.right[k];
                     double dxy = sqrt(r[0] * r[0] + r[1] * r[1]), t;
                     if (-r[2] > 0.0 && dxy < -r[2] * p.dmax / p.alt_ray) {
                         t = p.alt_ray / -r[2];
@@ -406,6 +408,73 @@ static void test_patches(void **state)
     tables_destroy(&s);
 }
 
+/* sea.h's CPU query is the displacement the grid draws: at vertices whose cells are fine
+ * enough for eq. 2 to keep every pattern in full (footprint under a quarter of the shortest
+ * band's wavelength), the displaced vertex is rest + sea_displacement (the displacement images
+ * blend the loop frames in float, as sea.c does); and sea_surface_height inverts the choppy
+ * map: at the displaced vertex's x, y it gives the vertex's height. */
+static void test_sea_query(void **state)
+{
+    struct swell_tables s;
+    struct swell_err err;
+    struct grid_desc d = { 0 };
+    struct grid *g;
+    struct camera c;
+    (void)state;
+    make_tables(&s);
+    d.tables = &s;
+    assert_int_equal(grid_create(&d, &g, &err), 0);
+    float *verts = calloc((size_t)grid_vertex_count(g) * GRID_FLOATS, sizeof(float));
+    camera_defaults(&c);
+    c.pos[0] = 1234.5;
+    c.pos[1] = -77.25;
+    c.pos[2] = 3.0;
+    c.pitch_deg = -70.0f;
+    double t = 2.7, lam_min = INFINITY, worst = 0.0, worst_h = 0.0;
+    for (int i = 0; i < s.patterns; i++)
+        lam_min = fmin(lam_min, grid_band_wavelength(&s.pattern[i]));
+    assert_true(grid_update(g, &c, 16.0f / 9.0f, t, verts) > 0);
+    int w = 96, h = 64, checked = 0;
+    for (int j = 0; j + 1 < h; j++)
+        for (int i = 0; i + 1 < w; i++) {
+            const float *v = verts + (size_t)(j * w + i) * GRID_FLOATS;
+            const float *vx = v + GRID_FLOATS, *vy = v + (size_t)w * GRID_FLOATS;
+            double foot = fmax(fmax(fabs(vx[3] - v[3]), fabs(vx[4] - v[4])),
+                               fmax(fabs(vy[3] - v[3]), fabs(vy[4] - v[4])));
+            if (foot > 0.25 * lam_min * 0.95)
+                continue;
+            double dd[3], wx = c.pos[0] + v[GRID_A_REST], wy = c.pos[1] + v[GRID_A_REST + 1];
+            sea_displacement(&s, wx, wy, t, dd);
+            worst = fmax(worst, fabs(v[0] - (v[GRID_A_REST] + dd[0])));
+            worst = fmax(worst, fabs(v[1] - (v[GRID_A_REST + 1] + dd[1])));
+            worst = fmax(worst, fabs(v[2] - (dd[2] - c.pos[2])));
+            double zh = sea_surface_height(&s, c.pos[0] + v[0], c.pos[1] + v[1], t);
+            worst_h = fmax(worst_h, fabs(zh - (v[2] + c.pos[2])));
+            checked++;
+        }
+    print_message("sea query vs %d fully displaced grid vertices: %.2e m; height by inverting "
+                  "the choppy map: %.2e m\n", checked, worst, worst_h);
+    assert_true(checked > 500);
+    assert_true(worst < 2e-4);
+    assert_true(worst_h < 0.02);   /* noise tables: |dD/dx| near 1 in places, slow to converge */
+    free(verts);
+    grid_destroy(g);
+    tables_destroy(&s);
+}
+
+/* grid_warp: the knots, linear between them. */
+static void test_warp(void **state)
+{
+    static const double a[4] = { -1.0, -0.5, 0.5, 2.0 }, k[2] = { 0.1, 0.9 };
+    (void)state;
+    assert_true(fabs(grid_warp(0.0, a, k, 4) - -1.0) < 1e-12);
+    assert_true(fabs(grid_warp(0.05, a, k, 4) - -0.75) < 1e-12);
+    assert_true(fabs(grid_warp(0.1, a, k, 4) - -0.5) < 1e-12);
+    assert_true(fabs(grid_warp(0.5, a, k, 4) - 0.0) < 1e-12);
+    assert_true(fabs(grid_warp(0.95, a, k, 4) - 1.25) < 1e-12);
+    assert_true(fabs(grid_warp(1.0, a, k, 4) - 2.0) < 1e-12);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -414,6 +483,8 @@ int main(void)
         cmocka_unit_test(test_grid_against_reference),
         cmocka_unit_test(test_projection_against_reference),
         cmocka_unit_test(test_patches),
+        cmocka_unit_test(test_sea_query),
+        cmocka_unit_test(test_warp),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
