@@ -11,6 +11,7 @@
 #define FILTER_NMAX 4.0f      /* ...and kept in full from Nmax cells up */
 #define NEAR_N 129            /* near patch vertices per side (128 cells) */
 #define FAR_RINGS 32          /* far patch rings from the near patch border to the far plane */
+#define NEAR_RINGS ((NEAR_N - 1) / 2)  /* square rings of cells the near patch is drawn in */
 #define NEAR_FADE 0.1         /* last tenth of the near patch fades the displacement to 0 */
 #define BLEND_BLOCK 16        /* RGBA8 bytes (4 texels) blended to floats per vectorised block */
 #define TILE_LOG2 4           /* lazily blended tiles of 16 x 16 texels */
@@ -176,10 +177,20 @@ static int build_topology(struct grid *g, struct swell_err *err)
                 int m1 = (m + 1) % per;
                 quad(g->idx, &n, (k + 1) * per + m, (k + 1) * per + m1, k * per + m, k * per + m1);
             }
-        for (int j = 0; j + 1 < NEAR_N; j++)
-            for (int i = 0; i + 1 < NEAR_N; i++)
-                quad(g->idx, &n, near0 + j * NEAR_N + i, near0 + j * NEAR_N + i + 1,
-                     near0 + (j + 1) * NEAR_N + i, near0 + (j + 1) * NEAR_N + i + 1);
+        /* The near patch as square rings of cells around its centre, where the camera is,
+         * outermost first: each ring spans a narrow range of distances, so the run of rows it
+         * is drawn in fetches at its own level (a row across the patch ran from under the
+         * camera to the border, and a run's level is its nearest vertex's). */
+        for (int k = NEAR_RINGS - 1; k >= 0; k--) {
+            int lo = NEAR_RINGS - 1 - k, hi = NEAR_RINGS + k;
+            for (int j = lo; j <= hi; j++)
+                for (int i = lo; i <= hi; i++) {
+                    if (j != lo && j != hi && i != lo && i != hi)
+                        continue;
+                    quad(g->idx, &n, near0 + j * NEAR_N + i, near0 + j * NEAR_N + i + 1,
+                         near0 + (j + 1) * NEAR_N + i, near0 + (j + 1) * NEAR_N + i + 1);
+                }
+        }
     }
     g->nidx = n;
     return 0;
@@ -329,7 +340,7 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     }
     if ((rc = build_topology(g, err)))
         goto fail;
-    g->rows = g->kind == 0 ? g->h - 1 : FAR_RINGS + NEAR_N - 1;
+    g->rows = g->kind == 0 ? g->h - 1 : FAR_RINGS + NEAR_RINGS;
     g->npad = (g->nverts + VBLK - 1) / VBLK * VBLK;
     g->ws = (g->w + VBLK - 1) / VBLK * VBLK;
     {
@@ -652,6 +663,7 @@ static inline f4 max4(f4 a, f4 b)
 }
 
 static inline float maxf(float a, float b) { return a > b ? a : b; }
+static inline float minf(float a, float b) { return a < b ? a : b; }
 static inline float clamp01(float a) { return a < 0.0f ? 0.0f : (a > 1.0f ? 1.0f : a); }
 
 /* Mip level whose texel matches a footprint of r level-0 texels: floor(log2 r) for r >= 2, else
@@ -1325,36 +1337,47 @@ void grid_row_span(const struct grid *g, int row, int *first, int *count, float 
         *first = row * per_row;
         *count = per_row;
     } else {
-        *first = far_idx + (row - FAR_RINGS) * 6 * (NEAR_N - 1);
-        *count = 6 * (NEAR_N - 1);
+        /* near ring k (build_topology): 8 k + 4 cells, after the (2 R)^2 - (2 k + 2)^2 cells of
+         * the rings outside it */
+        int k = NEAR_RINGS - 1 - (row - FAR_RINGS);
+        *first = far_idx + 6 * (4 * NEAR_RINGS * NEAR_RINGS - (2 * k + 2) * (2 * k + 2));
+        *count = 6 * (8 * k + 4);
     }
     *dist2_min = g->row_foot[row];
 }
 
-/* Smallest squared horizontal distance from the camera of each row's vertices (both edges of
- * the row), from their rest positions: on the projected grid the smaller of its two grid rows'
- * (update_projected). */
+/* Smallest squared horizontal distance from the camera of each row's vertices, from their rest
+ * positions: on the projected grid the smaller of its two grid rows' (update_projected); on a
+ * far ring, of its two borders' vertices; on near ring k, a bound from below: the distance to
+ * the square of vertices its cells surround (0 for the innermost, which holds the camera). */
 static void row_distances(struct grid *g)
 {
-    int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per;
+    int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per, mid = NEAR_RINGS;
     for (int r = 0; r < g->rows; r++) {
-        int a0, n, b0;
         if (g->kind == 0) {
             float a = g->row_d2[r], b = g->row_d2[r + 1];
             g->row_foot[r] = b < a ? b : a;
             continue;
-        } else if (r < FAR_RINGS) {
-            /* ring k = FAR_RINGS - 1 - r is drawn r-th (outermost first) */
-            int k = FAR_RINGS - 1 - r;
-            a0 = k * per; b0 = (k + 1) * per; n = per;
-        } else {
-            int j = r - FAR_RINGS;
-            a0 = near0 + j * NEAR_N; b0 = a0 + NEAR_N; n = NEAR_N;
         }
+        if (r >= FAR_RINGS) {
+            int k = NEAR_RINGS - 1 - (r - FAR_RINGS);
+            float m = 0.0f;
+            if (k > 0) {
+                const float *xs = g->rx + near0 + (size_t)mid * NEAR_N;   /* x by column */
+                float x0 = fabsf(xs[mid - k]), x1 = fabsf(xs[mid + k]);
+                float y0 = fabsf(g->ry[near0 + (size_t)(mid - k) * NEAR_N + mid]);
+                float y1 = fabsf(g->ry[near0 + (size_t)(mid + k) * NEAR_N + mid]);
+                m = minf(minf(x0, x1), minf(y0, y1));
+            }
+            g->row_foot[r] = m * m;
+            continue;
+        }
+        /* ring k = FAR_RINGS - 1 - r is drawn r-th (outermost first) */
+        int k = FAR_RINGS - 1 - r, a0 = k * per, b0 = (k + 1) * per;
         float m = INFINITY;
         for (int e = 0; e < 2; e++) {
             const float *x = g->rx + (e ? b0 : a0), *y = g->ry + (e ? b0 : a0);
-            for (int i = 0; i < n; i++) {
+            for (int i = 0; i < per; i++) {
                 float d2 = x[i] * x[i] + y[i] * y[i];
                 m = d2 < m ? d2 : m;    /* fminf is a libm call at -O2 on x86 */
             }

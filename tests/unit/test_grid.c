@@ -85,11 +85,15 @@ static void test_projected_grid_hits_its_rays(void **state)
             vec4 in = { x[GRID_A_POS], x[GRID_A_POS + 1], x[GRID_A_POS + 2], 1.0f }, o;
             glm_mat4_mulv(vp, in, o);
             double sx = o[0] / o[3], sy = o[1] / o[3];
-            /* columns are evenly spaced in NDC x over [-1.15, 1.15] */
-            assert_true(fabs(sx - (-1.15 + 2.3 * i / (w - 1))) < 1e-3);
+            /* a flat sea: the projector is the camera, and the columns are evenly spaced in
+             * angle from just left of the screen to just right of it */
+            double tx = tan(22.5 * M_PI / 180.0) * aspect, edge = atan(tx) + 0.02;
+            assert_true(fabs(atan(sx * tx) - (-edge + 2.0 * edge * i / (w - 1))) < 1e-4);
+            if (j == h - 1)
+                assert_true(sy < -1.0 && sy > -1.1);   /* the last row just below the screen */
             /* the rest point lies on the sea plane */
             assert_true(fabs(x[GRID_A_POS + 2] + 20.0f) < 1e-4f);
-            /* rows run down the screen from the horizon, evenly spaced */
+            /* rows run down the screen from the horizon */
             if (i == 0 && j > 0)
                 assert_true(sy < prev_sy);
             if (i == 0)
