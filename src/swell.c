@@ -445,6 +445,13 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
             rc = renderer_frame(r, &cam, t, w, h, err);
         if (!rc)
             rc = ph->be->present(ph->p, err);
+        if (!rc && o->verbose) {
+            struct renderer_stats st;
+            renderer_get_stats(r, &st);
+            if (st.camera_raise_m > 0.0)
+                printf("swell: frame %d: camera drawn %.2f m higher, %.1f m above the sea "
+                       "surface under it\n", i, st.camera_raise_m, (double)CAMERA_CLEARANCE_M);
+        }
         if (!rc && o->out) {
             char path[MAX_PATH_LEN];
             snprintf(path, sizeof path, o->out, i);

@@ -37,8 +37,9 @@ cg_frames=${BENCH_CG_FRAMES:-4}
 cg_tiers=${BENCH_CG_TIERS:-$tiers}
 cg_paths=${BENCH_CG_PATHS:-$paths}
 # Swell's own CPU work per frame (renderer.c calls these from renderer_frame; check with nm):
-# grid projection + displacement, loop-frame blending; and the texture upload of the blend.
-cg_own="grid_update grid_projection stream_blend"
+# grid projection + displacement, loop-frame blending, the sea height under the camera; and
+# the texture upload of the blend.
+cg_own="grid_update grid_projection stream_blend sea_surface_height"
 cg_upload="upload_chain_typed"
 
 die() { echo "bench: $*" >&2; exit 1; }
