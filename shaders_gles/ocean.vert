@@ -23,7 +23,10 @@ uniform vec3 grid_up;
 uniform vec4 grid_frame;                // column shares at the screen's edges (grid.h
                                         // col_split), altitude, projector height
 uniform vec4 grid_range;                // column angles: left, screen left, right, right edge
-uniform vec4 grid_rows;                 // row angles: top, screen bottom, bottom; its share
+uniform vec4 grid_rows;                 // the camera's depression at the top row and the
+                                        // screen bottom, their rows' share, its height (grid.h)
+uniform vec3 grid_margin;               // projector angles of the screen bottom and the last
+                                        // row; minus the projector's pitch, radians
 uniform vec3 grid_step;                 // one cell in a_grid units (x, y); far distance, m
 uniform vec4 disp_scale[4];             // RGBA8 dequantisation of each pattern's table; w: the
 uniform vec4 disp_bias[4];              // blend weight of loop frame b (frames a, b bound)
@@ -52,8 +55,12 @@ vec2 grid_rest(vec2 g)
              : g.x < grid_frame.y ? mix(grid_range.y, grid_range.z,
                                         (g.x - grid_frame.x) / (grid_frame.y - grid_frame.x))
              : mix(grid_range.z, grid_range.w, (g.x - grid_frame.y) / max(1.0 - grid_frame.y, 1e-6));
-    float ay = g.y < grid_rows.w ? mix(grid_rows.x, grid_rows.y, g.y / grid_rows.w)
-             : mix(grid_rows.y, grid_rows.z, (g.y - grid_rows.w) / max(1.0 - grid_rows.w, 1e-6));
+    // grid_row_tan: rows on the screen evenly in the camera's depression dc, seen from the
+    // projector at depression atan2(A sin dc, h cos dc); the rest evenly in its own angle
+    float dc = mix(grid_rows.x, grid_rows.y, g.y / grid_rows.z);
+    float ay = g.y < grid_rows.z
+        ? grid_margin.z - atan(grid_frame.w * sin(dc), grid_rows.w * cos(dc))
+        : mix(grid_margin.x, grid_margin.y, (g.y - grid_rows.z) / max(1.0 - grid_rows.z, 1e-6));
     vec3 d = grid_fwd + tan(min(ax, 1.5)) * grid_right + tan(ay) * grid_up;
     float dxy = length(d.xy);
     float t = -d.z * grid_step.z > grid_frame.w * dxy ? grid_frame.w / -d.z

@@ -331,8 +331,8 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
         return swell_fail(err, SWELL_E_NOMEM, "grid: no memory");
     g->t = t;
     g->kind = d->kind;
-    g->w = d->w > 0 ? d->w : 96;
-    g->h = d->h > 0 ? d->h : 64;
+    g->w = d->w > 0 ? d->w : 80;
+    g->h = d->h > 0 ? d->h : 56;
     if (g->kind == 0 && (g->w < 2 || g->h < 2 || g->w * g->h > 65536)) {
         rc = swell_fail(err, SWELL_E_ARG, "grid: %d x %d vertices; need 2..65536 in all "
                         "(16-bit indices on GLES2)", g->w, g->h);
@@ -1029,6 +1029,8 @@ static int frustum_slab_points(const double fwd[3], const double right[3], const
     return nq;
 }
 
+static double cam_depression(const struct grid_projection *p, double theta);
+
 /* The projected grid's frame for a camera (grid.h); 0 when no sea is in view.
  *
  * Coverage by construction: the grid spans, in the projector's NDC, the bounding box of the
@@ -1112,12 +1114,15 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
             sb = atan(dot3(d, p->up) / fz) - GRID_MARGIN;
     }
     sb = fmin(fmax(sb, y0), y1);
+    p->pitch = pitch * M_PI / 180.0;
     p->row_ang[0] = y1;
     p->row_ang[1] = sb;
     p->row_ang[2] = y0;
-    p->row_split = y1 - y0 > 0.0 ? fmax(SCREEN_SHARE, (y1 - sb) / (y1 - y0)) : 1.0;
-    if (sb <= y0)
-        p->row_split = 1.0;
+    p->row_h = fmax(p->alt, CAMERA_CLEARANCE_M);
+    p->row_cam[0] = cam_depression(p, y1);
+    p->row_cam[1] = cam_depression(p, sb);
+    /* the margin's share: what uniform projector angles would give it, at most 1 - SCREEN_SHARE */
+    p->row_split = sb > y0 ? fmax(SCREEN_SHARE, (y1 - sb) / (y1 - y0)) : 1.0;
     double c0 = fmax(-sx, x0), c1 = fmin(sx, x1), span = x1 - x0;
     double inner = fmax(SCREEN_SHARE, (c1 - c0) / span);
     double side_l = c0 - x0, side_r = x1 - c1;
@@ -1128,6 +1133,28 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
     p->col_split[0] = side_l + side_r > 0.0 ? (1.0 - inner) * side_l / (side_l + side_r) : 0.0;
     p->col_split[1] = p->col_split[0] + inner;
     return 1;
+}
+
+/* The sea-plane row seen from the projector at angle theta above its axis, at forward
+ * distance s = alt_ray / tan(dp) (dp = -(pitch + theta), its depression), is seen by the
+ * camera at depression atan2(row_h, s); and back. Both work past the nadir (dp > 90 deg). */
+static double cam_depression(const struct grid_projection *p, double theta)
+{
+    double dp = -(p->pitch + theta);
+    return atan2(p->row_h * sin(dp), p->alt_ray * cos(dp));
+}
+
+double grid_row_tan(const struct grid_projection *p, double v)
+{
+    double theta;
+    if (v < p->row_split) {
+        double dc = p->row_cam[0] + (p->row_cam[1] - p->row_cam[0]) * v / p->row_split;
+        theta = -p->pitch - atan2(p->alt_ray * sin(dc), p->row_h * cos(dc));
+    } else {
+        theta = p->row_ang[1] + (p->row_ang[2] - p->row_ang[1]) * (v - p->row_split) /
+                                    fmax(1.0 - p->row_split, 1e-12);
+    }
+    return tan(theta);
 }
 
 double grid_warp(double x, const double *a, const double *s, int n)
@@ -1198,7 +1225,7 @@ static int update_projected(struct grid *g, const struct camera *cam, float aspe
     for (int i = 0; i < g->ws; i++)
         col_sx[i] = tan(grid_warp(i < w ? (double)i / (w - 1) : 1.0, p.col_ang, p.col_split, 4));
     for (int j = 0; j < h; j++) {
-        double sy = tan(grid_warp((double)j / (h - 1), p.row_ang, &p.row_split, 3));
+        double sy = grid_row_tan(&p, (double)j / (h - 1));
         double row[3], t_row = 0.0, lim2 = -1.0;
         for (int c = 0; c < 3; c++)
             row[c] = fwd[c] + sy * up[c];
@@ -1473,7 +1500,7 @@ int grid_projection(struct grid *g, const struct camera *cam, float aspect,
         return 0;
     for (int r = 0; r < g->rows; r++) {
         /* row r spans grid rows r (farther) and r + 1 (nearer) */
-        double sy = tan(grid_warp((double)(r + 1) / (g->h - 1), p->row_ang, &p->row_split, 3));
+        double sy = grid_row_tan(p, (double)(r + 1) / (g->h - 1));
         double sx = tan(fmin(fmax(0.0, p->col_ang[0]), p->col_ang[3])), d[3], dxy, t;
         for (int c = 0; c < 3; c++)
             d[c] = p->fwd[c] + sx * p->right[c] + sy * p->up[c];

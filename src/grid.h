@@ -53,27 +53,32 @@ int grid_row_count(const struct grid *g);
 void grid_row_span(const struct grid *g, int row, int *first, int *count, float *dist2_min);
 
 /* The projected grid's frame for a camera (grid.c), for building the grid in a vertex shader.
- * The grid is cast from a projector at the camera's x, y and alt_ray above the sea plane
- * (Johanson 2004's projector; Bruneton 2010 §3 casts from the camera itself): grid parameter
- * (u, v) in [0, 1]^2 is the ray fwd + tan(phi(u)) right + tan(theta(v)) up, whose angles are
- * piecewise linear (grid_warp): columns over col_ang (left edge, the screen's left and right
- * edges, right edge) with col_split[0..1] of the columns at the inner two, rows over row_ang
- * (top: the projector's horizon or below it, the screen's bottom edge, the bottom) with
- * row_split of the rows above the middle one, so most vertices fall on the screen and the
- * rest cover what displacement can bring into it. Rays meet the plane alt_ray below the
- * projector, else end at dmax. The range bounds every sea-plane point whose displaced image
- * can reach the camera's frustum (coverage by construction, grid.c). alt is the camera's
- * height above the sea plane. */
+ * The grid is cast from a projector at the camera's x, y, alt_ray above the sea plane and
+ * pitched down by -pitch (radians) (Johanson 2004's projector; Bruneton 2010 §3 casts from the
+ * camera itself): grid parameter (u, v) in [0, 1]^2 is the ray fwd + tan(phi(u)) right +
+ * grid_row_tan(v) up. Columns: phi piecewise linear over col_ang (left edge, the screen's left
+ * and right edges, right edge), col_split[0..1] of them at the inner two knots (grid_warp).
+ * Rows: the first row_split of them over the screen, evenly spaced in the camera's depression
+ * angle (row_cam: the top row's and the screen bottom's, for a camera row_h above the sea
+ * plane), so their spacing on the screen is the camera's whatever the projector; the rest
+ * evenly in the projector's angle from row_ang[1] (the screen bottom) to row_ang[2].
+ * row_ang[0] is the top row's angle (the projector's horizon or below it). Rays meet the
+ * plane alt_ray below the projector, else end at dmax. The range bounds every sea-plane point
+ * whose displaced image can reach the camera's frustum (coverage by construction, grid.c).
+ * alt is the camera's height above the sea plane. */
 struct grid_projection {
     double fwd[3], right[3], up[3];
-    double alt, alt_ray, dmax;
+    double alt, alt_ray, dmax, pitch;
     double col_ang[4], col_split[2];
-    double row_ang[3], row_split;
+    double row_ang[3], row_cam[2], row_h, row_split;
 };
 
 /* The piecewise-linear angle at parameter x in [0, 1] through a[0] at 0, a[1] at s[0], ...,
  * a[n - 1] at 1 (n - 2 interior knots s[], increasing). */
 double grid_warp(double x, const double *a, const double *s, int n);
+
+/* tan of the projector angle of grid row parameter v in [0, 1] (see struct grid_projection). */
+double grid_row_tan(const struct grid_projection *p, double v);
 
 /* Fill p for the camera and the rows' distances (grid_row_span) without building vertices.
  * Returns the number of indices to draw, 0 when no sea is in view (or for patches). */

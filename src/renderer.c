@@ -86,13 +86,13 @@ static const struct shader_attrib ocean_attribs[A_COUNT] = {
 
 /* Vertex-texture-fetch grid (ocean.vert VTF_PATTERNS): its uniforms, per pattern. */
 enum vtf_uniform {
-    VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_ROWS, VU_STEP, VU_SCALE, VU_BIAS, VU_PATTERN,
-    VU_A0, VU_B0, VU_A1, VU_B1, VU_A2, VU_B2, VU_A3, VU_B3, VU_COUNT
+    VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_ROWS, VU_MARGIN, VU_STEP, VU_SCALE, VU_BIAS,
+    VU_PATTERN, VU_A0, VU_B0, VU_A1, VU_B1, VU_A2, VU_B2, VU_A3, VU_B3, VU_COUNT
 };
 static const char *const vtf_uniform_names[VU_COUNT] = {
-    "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_rows", "grid_step", "disp_scale",
-    "disp_bias", "disp_pattern", "disp_a0", "disp_b0", "disp_a1", "disp_b1", "disp_a2", "disp_b2",
-    "disp_a3", "disp_b3"
+    "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_rows", "grid_margin",
+    "grid_step", "disp_scale", "disp_bias", "disp_pattern", "disp_a0", "disp_b0", "disp_a1",
+    "disp_b1", "disp_a2", "disp_b2", "disp_a3", "disp_b3"
 };
 static const struct shader_attrib sky_attribs[1] = { { "a_ndc", 0 } };
 
@@ -206,9 +206,9 @@ static void resolve(struct renderer_desc *d)
     if (!d->shader_dir)
         d->shader_dir = "shaders_gles";
     if (d->grid_w <= 0)
-        d->grid_w = 96;
+        d->grid_w = 80;
     if (d->grid_h <= 0)
-        d->grid_h = 64;
+        d->grid_h = 56;
     if (d->sun_elev_deg == 0.0f)
         d->sun_elev_deg = 30.0f;
 }
@@ -615,8 +615,9 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
                 (float)p->alt_ray);
     glUniform4f(u[VU_RANGE], (float)p->col_ang[0], (float)p->col_ang[1], (float)p->col_ang[2],
                 (float)p->col_ang[3]);
-    glUniform4f(u[VU_ROWS], (float)p->row_ang[0], (float)p->row_ang[1], (float)p->row_ang[2],
-                (float)p->row_split);
+    glUniform4f(u[VU_ROWS], (float)p->row_cam[0], (float)p->row_cam[1], (float)p->row_split,
+                (float)p->row_h);
+    glUniform3f(u[VU_MARGIN], (float)p->row_ang[1], (float)p->row_ang[2], (float)-p->pitch);
     glUniform3f(u[VU_STEP], 1.0f / (float)(w - 1), 1.0f / (float)(h - 1), (float)p->dmax);
     glUniform4fv(u[VU_SCALE], SWELL_MAX_PATTERNS, &sc[0][0]);
     glUniform4fv(u[VU_BIAS], SWELL_MAX_PATTERNS, &bi[0][0]);
