@@ -44,6 +44,7 @@ varying vec2 v_extra;               // foam clear fraction not fetched here (wit
                                     // fetched: the coverage, ocean.vert), sky LOD offset
 #else
 #endif
+varying vec4 v_fog;                 // ocean.vert haze(): in-scattered light, transmittance
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
 varying vec4 v_lin_dx;              // ...and their derivatives in s.x
 varying vec4 v_lin_dy;              // ...and in s.y
@@ -214,12 +215,12 @@ void main()
     float cover = v_extra.x;   // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif
     // Foam: Lambertian, reflectance 0.4 (Dupuy §2), lit by sun and sky.
-    gl_FragColor = vec4(tone_map(mix(clear_sea, foam_radiance, cover)), 1.0);
+    gl_FragColor = vec4(tone_map(mix(clear_sea, foam_radiance, cover) * v_fog.a + v_fog.rgb), 1.0);
 #else
     // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal; the
     // texture's RGB holds the rest per texel of the bumped view vector for this sun: (1 - F) x
     // the water colour + the Phong sun of Hu §5.3 (renderer.c upload_fresnel_sun).
     vec3 sky = texture2D(sky_tex, uv.zw).rgb;
-    gl_FragColor = vec4(ftex.rgb + ftex.a * sky, 1.0);
+    gl_FragColor = vec4((ftex.rgb + ftex.a * sky) * v_fog.a + v_fog.rgb, 1.0);
 #endif
 }

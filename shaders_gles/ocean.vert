@@ -89,11 +89,17 @@ uniform vec2 pattern_uv_offset[4];      // per fragment-shader pattern slot
 uniform float pattern_inv_size[4];      // 1 / L_i, 1/m
 
 uniform vec3 lin_s0;        // xy: mean slope of every fragment pattern slot; z: step h
+uniform vec3 sun_dir_world;
+uniform vec3 haze_tau;      // aerial perspective (sky.h sky_haze): vertical optical depth,
+uniform vec3 haze_ray;      // the horizon's Rayleigh and Mie radiances before the phase
+uniform vec3 haze_mie;      // functions (x exposure), and the air mass per metre of path
+uniform vec2 haze_frame;    // from the camera's height: (1 - e^{-h/H}) / h; Mie g
+varying vec4 v_fog;         // in-scattered light (high: radiance; low: display), the sea's
+                            // transmittance
 varying vec4 v_lin;         // Fresnel-texture uv, sky-map uv at s0
 varying vec4 v_lin_dx;      // their derivatives in s.x ...
 varying vec4 v_lin_dy;      // ... and s.y
 #ifdef QUALITY_HIGH
-uniform vec3 sun_dir_world;
 uniform float sky_map_size;             // texels
 uniform vec4 const_slope;               // slots not fetched: -, -, slope variance xy
 uniform vec3 const_k;                   // ...their k mean, k variance, foam clear fraction
@@ -140,6 +146,26 @@ vec4 lookups(vec3 v, vec2 s)
     return vec4(vec2(0.5) + 0.5 * fv, sky_map_uv(reflect(-v, n)));
 }
 
+// Aerial perspective from the sky model (sky.h sky_haze): the path of length |p| to the
+// camera has air mass |p| (1 - e^{-h/H}) / h through the exponential atmosphere, transmittance
+// e^{-tau m} per channel, and scatters in (1 - T) times the horizon sky of its azimuth.
+vec4 haze(vec3 p)
+{
+    vec3 t = exp(-haze_tau * (length(p) * haze_frame.x));
+    vec3 hd = vec3(p.xy / max(length(p.xy), 1e-6), 0.0);
+    float cg = dot(hd, sun_dir_world), g = haze_frame.y;
+    float pr = 3.0 / (16.0 * PI) * (1.0 + cg * cg);
+    float hg = 1.0 + g * g - 2.0 * g * cg;
+    float pm = (1.0 - g * g) / (4.0 * PI * hg * sqrt(hg));
+    vec3 sky_h = haze_ray * pr + haze_mie * pm;
+#ifdef QUALITY_HIGH
+    return vec4(sky_h * (vec3(1.0) - t), t.g);
+#else
+    // low quality mixes in display space (ocean.frag): the tone-mapped horizon
+    return vec4(tone_map(sky_h) * (1.0 - t.g), t.g);
+#endif
+}
+
 #ifdef QUALITY_HIGH
 // Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
 // Lambda(a) = (e^{-a^2} / (a sqrt(pi)) - erfc(a)) / 2, a = 1 / (sqrt(2) sigma tan theta), by the
@@ -173,12 +199,14 @@ void main()
 #if VTF_PATTERNS > 3
     disp += displacement(disp_a3, disp_b3, 3, a_rest, foot);
 #endif
-    vec3 a_pos = vec3(a_rest + disp.xy, disp.z - grid_frame.z);
+    vec3 a_pos = vec3(a_rest + disp.xy, disp.z - grid_frame.z - dot(a_rest, a_rest) * EARTH_DROP_K);
     vec4 a_geo_slope = vec4(0.0);   // no CPU patterns on these tiers
     vec3 a_geo_k = vec3(0.0);
 #endif
     vec3 v = normalize(-a_pos);
-    vec2 s0 = a_geo_slope.xy + lin_s0.xy;
+    // the sphere's own slope at the rest point (its drop r^2 / (2 R) differentiated) tilts
+    // every distant normal towards the camera's vertical
+    vec2 s0 = a_geo_slope.xy + lin_s0.xy - a_rest * (2.0 * EARTH_DROP_K);
     float h = lin_s0.z;
     v_lin = lookups(v, s0);
     v_lin_dx = (lookups(v, s0 + vec2(h, 0.0)) - lookups(v, s0 - vec2(h, 0.0))) / (2.0 * h);
@@ -225,5 +253,6 @@ void main()
 #if FS_PATTERNS > 3
     v_uv3 = pattern_uv_offset[3] + a_rest * pattern_inv_size[3];
 #endif
+    v_fog = haze(a_pos);
     gl_Position = world_to_clip * vec4(a_pos, 1.0);
 }

@@ -26,6 +26,10 @@ struct camera {
  * it, as a boat's or a buoy's camera floats): swell has no view from under the water. */
 #define CAMERA_CLEARANCE_M 0.3
 
+/* The Earth's mean radius: the sea is drawn on a sphere (its drop r^2 / (2 R) at distance r;
+ * the horizon's dip acos(R / (R + h)) below the level), m. */
+#define EARTH_RADIUS_M 6.371e6
+
 enum camera_path {
     CAMERA_PATH_NONE = 0,   /* fixed camera as given */
     CAMERA_PATH_SURFACE,    /* 5 m above the sea, slowly turning */

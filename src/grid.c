@@ -6,6 +6,7 @@
 #include "grid.h"
 #include "quantize.h"
 
+#define EARTH_DROP_K ((float)(0.5 / EARTH_RADIUS_M))  /* drop r^2 / (2 R) of the sea at r, 1/m */
 #define GRID_MARGIN 0.02      /* NDC beyond the bounding box of what displacement can reach */
 #define FILTER_NMIN 2.0f      /* Bruneton eq. 2: waves shorter than Nmin cells are cancelled... */
 #define FILTER_NMAX 4.0f      /* ...and kept in full from Nmax cells up */
@@ -862,7 +863,7 @@ static inline void write_tail(float *restrict vx, int n, const float *restrict r
     for (int e = 0; e < n; e++, vx += GRID_FLOATS) {
         vx[GRID_A_POS + 0] = rx[e] + d[4 * e + 0];
         vx[GRID_A_POS + 1] = ry[e] + d[4 * e + 1];
-        vx[GRID_A_POS + 2] = z + d[4 * e + 2];
+        vx[GRID_A_POS + 2] = z - (rx[e] * rx[e] + ry[e] * ry[e]) * EARTH_DROP_K + d[4 * e + 2];
         vx[GRID_A_REST] = rx[e];
         vx[GRID_A_REST + 1] = ry[e];
         if (cpu) {
@@ -895,6 +896,7 @@ static inline void write_quad(float *restrict vx, const float *restrict rx,
                               const int cpu)
 {
     f4 x = ld4(rx), y = ld4(ry);
+    zz -= (x * x + y * y) * EARTH_DROP_K;   /* the sea's drop on a sphere (camera.h) */
     f4 xy_lo = __builtin_shufflevector(x, y, 0, 4, 1, 5), xy_hi = __builtin_shufflevector(x, y, 2, 6, 3, 7);
     f4 zx_lo = __builtin_shufflevector(zz, x, 0, 4, 1, 5), zx_hi = __builtin_shufflevector(zz, x, 2, 6, 3, 7);
     write_one(vx, __builtin_shufflevector(xy_lo, zx_lo, 0, 1, 4, 5) + ld4(d), y[0], cpu);
@@ -958,11 +960,15 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
     }
 }
 
-static float far_distance(const struct camera *cam)
+/* How far the grid reaches: the farthest crest the camera can see over a sphere, its own
+ * horizon sqrt(2 R h + h^2) plus a crest's, sqrt(2 R crest) (within the far plane). */
+static float far_distance(const struct grid *g, const struct camera *cam)
 {
     float n, f;
+    double h = fmax(cam->pos[2] - cam->surface_z_m, CAMERA_CLEARANCE_M) + fmax(cam->surface_z_m, 0.0);
     camera_clip_planes(cam, &n, &f);
-    return 0.9f * f;
+    double d = sqrt(2.0 * EARTH_RADIUS_M * h + h * h) + sqrt(2.0 * EARTH_RADIUS_M * g->crest_m);
+    return (float)fmin(0.9 * f, 1.02 * d);
 }
 
 /* Camera basis for heading h and pitch p (degrees): forward, right (horizontal), up. */
@@ -1052,10 +1058,21 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
     camera_clip_planes(cam, &near_m, &far_m);
     double ty = tan(0.5 * fov), tx = ty * aspect;
     p->alt = cam->pos[2];
-    p->dmax = far_distance(cam);
+    p->dmax = far_distance(g, cam);
     basis_hp(cam->heading_deg, cam->pitch_deg, cf, cr, cu);
-    int nq = frustum_slab_points(cf, cr, cu, tx, ty, near_m, far_m,
-                                 -p->alt - g->crest_m, -p->alt + g->crest_m, g->chop_m, q);
+    /* The sea lies on a sphere: at distance r it is r^2 / (2 R) lower, so the slab's floor is
+     * lowered by the drop at the farthest point the region reaches (twice: from the flat
+     * slab's reach, then from the lowered one's; at most dmax's). */
+    double reach = 0.0;
+    int nq = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        double r = fmin(reach, p->dmax);
+        nq = frustum_slab_points(cf, cr, cu, tx, ty, near_m, far_m,
+                                 -p->alt - g->crest_m - r * r * EARTH_DROP_K,
+                                 -p->alt + g->crest_m, g->chop_m, q);
+        for (int k = 0; k < nq; k++)
+            reach = fmax(reach, sqrt(q[k][0] * q[k][0] + q[k][1] * q[k][1]));
+    }
     if (nq == 0)
         return 0;
     p->alt_ray = fmax(p->alt, fmax(g->crest_m + g->chop_m, 1.0));
@@ -1317,7 +1334,7 @@ static int update_patches(struct grid *g, const struct camera *cam, float aspect
     double cell = 2.0 * half / (NEAR_N - 1);
     double ox = -(cam->pos[0] - cell * floor(cam->pos[0] / cell));
     double oy = -(cam->pos[1] - cell * floor(cam->pos[1] / cell));
-    double dmax = far_distance(cam);
+    double dmax = far_distance(g, cam);
     double q = pow(fmax(dmax / half, 1.0001), 1.0 / FAR_RINGS);
     int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per;
     double inv = 1.0 / (NEAR_N - 1);

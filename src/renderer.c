@@ -36,7 +36,7 @@ enum ocean_uniform {
     OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
-    OU_SKY_BIAS_MAX, OU_COUNT
+    OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -45,7 +45,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "wc_scale", "wc_bias", "lin_s0", "ds_offset", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
-    "sky_top_level", "sky_bias_max"
+    "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -934,7 +934,11 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
 {
     mat4 inv;
     float h = cam->heading_deg * (float)(M_PI / 180.0);
-    vec4 far = { 1e6f * cosf(h), 1e6f * sinf(h), -(float)cam->pos[2], 1.0f }, clip;
+    /* the sphere's horizon, acos(R / (R + alt)) below the level (camera.h) */
+    double alt = fmax(cam->pos[2], 0.0);
+    double dip = acos(EARTH_RADIUS_M / (EARTH_RADIUS_M + alt));
+    vec4 far = { (float)(1e6 * cos(dip)) * cosf(h), (float)(1e6 * cos(dip)) * sinf(h),
+                 (float)(-1e6 * sin(dip)), 0.0f }, clip;
     glm_mat4_mulv(world_to_clip, far, clip);
     float hz = clip[3] > 0.0f ? clip[1] / clip[3] : -1.0f;   /* NDC y of the horizon */
     int y0 = (int)floorf((0.5f * (hz - 0.1f) + 0.5f) * (float)height);
@@ -1042,6 +1046,23 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform1f(u[OU_SKY_TOP], (float)(r->sky.levels - 1));
     glUniform1f(u[OU_SKY_BIAS_MAX], r->gpu->caps.max_lod_bias);
     glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
+    {
+        /* aerial perspective (ocean.vert haze): air mass per metre of path from the camera's
+         * height h through the exponential atmosphere, (1 - e^{-h/H}) / h -> 1 / H at the sea */
+        struct sky_haze hz;
+        sky_haze(&r->sky, &hz);
+        double h = fmax(cam->pos[2], 0.0), hs = hz.scale_height_m;
+        float km = (float)(h > 1e-3 * hs ? -expm1(-h / hs) / h : (1.0 - 0.5 * h / hs) / hs);
+        float ray[3], mie[3];
+        for (int c = 0; c < 3; c++) {
+            ray[c] = e * hz.ray[c];
+            mie[c] = e * hz.mie[c];
+        }
+        glUniform3fv(u[OU_HAZE_TAU], 1, hz.tau_ext);
+        glUniform3fv(u[OU_HAZE_RAY], 1, ray);
+        glUniform3fv(u[OU_HAZE_MIE], 1, mie);
+        glUniform2f(u[OU_HAZE_FRAME], km, hz.mie_g);
+    }
     glUniform3fv(u[OU_SUN_IRR], 1, sun);
     glUniform3fv(u[OU_SEA_RADIANCE], 1, sea);
     glUniform3fv(u[OU_FOAM_RADIANCE], 1, foam);
@@ -1274,7 +1295,8 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
     else
         glClearColor(0.02f, 0.05f, 0.07f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
-    draw_sky(r, cam, world_to_clip, width, height);
+    if (!r->d.no_sky)
+        draw_sky(r, cam, world_to_clip, width, height);
     if (nidx > 0) {
         /* Rows are ordered far to near, so without a depth buffer the painter's order holds. */
         if (depth_bits > 0) {

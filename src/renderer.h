@@ -35,6 +35,8 @@ struct renderer_desc {
                                          * tests compare the two) */
     int keep_resolved;                  /* 1: drop a pattern only at its 1x1 level, not where
                                          * its mip means are nearly flat (tests compare) */
+    int no_sky;                         /* 1: draw no sky, so the sea's silhouette meets the
+                                         * clear colour (tests: the horizon row) */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
                                          * the sea, so a pixel neither covers shows (swell
                                          * --debug uncovered, the frame tests); default 0: a

@@ -44,6 +44,23 @@ void sky_radiance(const struct sky *s, const float dir[3], float rgb[3])
     }
 }
 
+void sky_haze(const struct sky *s, struct sky_haze *out)
+{
+    float m_v = air_mass(0.0f), elev = sun_elev_deg(s), m_s = air_mass(elev);
+    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f);
+    for (int c = 0; c < 3; c++) {
+        float tau = tau_r[c] + MIE_EXT * TAU_M;
+        float a = tau * m_s, b = tau * m_v;
+        float f = fabsf(b - a) > 1e-4f ? (expf(-a) - expf(-b)) / (b - a) : expf(-a);
+        float gain = twilight * m_v * f;   /* sky_radiance at elevation 0 */
+        out->tau_ext[c] = tau;
+        out->ray[c] = tau_r[c] * gain;
+        out->mie[c] = TAU_M * gain;
+    }
+    out->mie_g = MIE_G;
+    out->scale_height_m = 8000.0f;
+}
+
 size_t sky_level_offset(const struct sky *s, int level)
 {
     size_t off = 0;

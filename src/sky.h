@@ -32,6 +32,20 @@ struct sky {
                              * A as data's, A = SKY_LEVEL_ALPHA l / 255 */
 };
 
+/* Aerial perspective in the same model (ocean.vert): between the camera and a sea point the
+ * path's transmittance per channel is exp(-tau_ext m) with m its air mass, and it scatters in
+ * (1 - T) times the sky's radiance at the horizon in that azimuth, tau_r p_R(gamma) gain_r +
+ * tau_m p_M(gamma) gain_m (what sky_radiance gives at elevation 0: the path through the whole
+ * atmosphere towards the horizon). */
+struct sky_haze {
+    float tau_ext[3];       /* vertical optical depth, per channel */
+    float ray[3];           /* tau_R x the horizon gain: multiplies p_R(gamma) */
+    float mie[3];           /* tau_M x the horizon gain: multiplies p_M(gamma) */
+    float mie_g;            /* Henyey-Greenstein g */
+    float scale_height_m;   /* of the homogeneous slab's density, m */
+};
+void sky_haze(const struct sky *s, struct sky_haze *out);
+
 /* Sky radiance towards unit direction dir (z up); below the horizon the horizon's. */
 void sky_radiance(const struct sky *s, const float dir[3], float rgb[3]);
 

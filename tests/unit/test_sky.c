@@ -51,10 +51,41 @@ static void test_level_alpha(void **state)
     sky_destroy(&s);
 }
 
+/* sky_haze's horizon (what ocean.vert's haze() evaluates: tau_R p_R gain + tau_M p_M gain)
+ * is sky_radiance at elevation 0 in every azimuth, for a high, a low and a set sun; and its
+ * extinction is the model's. */
+static void test_haze_horizon(void **state)
+{
+    static const float elevs[] = { 60.0f, 5.0f, -3.0f };
+    (void)state;
+    for (int e = 0; e < 3; e++) {
+        struct sky s;
+        struct sky_haze hz;
+        struct swell_err err;
+        assert_int_equal(sky_bake(elevs[e], 40.0f, 64, &s, &err), 0);
+        sky_haze(&s, &hz);
+        for (int a = 0; a < 36; a++) {
+            float dir[3] = { cosf(a * 0.1745f), sinf(a * 0.1745f), 0.0f }, ref[3];
+            sky_radiance(&s, dir, ref);
+            float cg = dir[0] * s.sun_dir[0] + dir[1] * s.sun_dir[1] + dir[2] * s.sun_dir[2];
+            float g = hz.mie_g, hg = 1.0f + g * g - 2.0f * g * cg;
+            float pr = 3.0f / (16.0f * (float)M_PI) * (1.0f + cg * cg);
+            float pm = (1.0f - g * g) / (4.0f * (float)M_PI * hg * sqrtf(hg));
+            for (int c = 0; c < 3; c++) {
+                float v = hz.ray[c] * pr + hz.mie[c] * pm;
+                assert_true(fabsf(v - ref[c]) <= 1e-5f + 1e-4f * ref[c]);
+            }
+        }
+        assert_true(fabsf(hz.tau_ext[2] - (0.265f + 1.1f * 0.0252f)) < 1e-6f);
+        sky_destroy(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_level_alpha),
+        cmocka_unit_test(test_haze_horizon),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
