@@ -91,11 +91,15 @@ uniform float pattern_inv_size[4];      // 1 / L_i, 1/m
 uniform vec3 lin_s0;        // xy: mean slope of every fragment pattern slot; z: step h
 uniform vec3 sun_dir_world;
 uniform vec3 haze_tau;      // aerial perspective (sky.h sky_haze): vertical optical depth,
+uniform vec2 haze_frame;    // the air mass per metre of path from the camera's height:
+                            // (1 - e^{-h/H}) / h; Mie g
+#ifndef QUALITY_HIGH
 uniform vec3 haze_ray;      // the horizon's Rayleigh and Mie radiances before the phase
-uniform vec3 haze_mie;      // functions (x exposure), and the air mass per metre of path
-uniform vec2 haze_frame;    // from the camera's height: (1 - e^{-h/H}) / h; Mie g
-varying vec4 v_fog;         // in-scattered light (high: radiance; low: display), the sea's
-                            // transmittance
+uniform vec3 haze_mie;      // functions (x exposure)
+#endif
+#ifndef QUALITY_HIGH
+varying vec4 v_fog;         // in-scattered light (display space), the sea's transmittance
+#endif
 varying vec4 v_lin;         // Fresnel-texture uv, sky-map uv at s0
 varying vec4 v_lin_dx;      // their derivatives in s.x ...
 varying vec4 v_lin_dy;      // ... and s.y
@@ -111,7 +115,8 @@ uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's
 #endif
 varying vec4 v_sun;
 varying vec4 v_base;
-varying vec2 v_extra;
+varying vec3 v_extra;       // foam clear fraction, sky LOD offset, the haze's transmittance
+                            // (so high quality's varyings fit GLES2's 8 rows)
 #endif
 #if FS_PATTERNS > 0
 varying vec2 v_uv0;
@@ -149,22 +154,32 @@ vec4 lookups(vec3 v, vec2 s)
 // Aerial perspective from the sky model (sky.h sky_haze): the path of length |p| to the
 // camera has air mass |p| (1 - e^{-h/H}) / h through the exponential atmosphere, transmittance
 // e^{-tau m} per channel, and scatters in (1 - T) times the horizon sky of its azimuth.
+vec3 haze_trans(vec3 p)
+{
+    return exp(-haze_tau * (length(p) * haze_frame.x));
+}
+
+#ifdef QUALITY_HIGH
+// High quality: the green channel's transmittance only (GLES2's 8 varying rows are full);
+// ocean.frag derives the others from it and evaluates the in-scattered horizon sky per pixel.
+float haze_t(vec3 p)
+{
+    return haze_trans(p).g;
+}
+#else
 vec4 haze(vec3 p)
 {
-    vec3 t = exp(-haze_tau * (length(p) * haze_frame.x));
+    vec3 t = haze_trans(p);
     vec3 hd = vec3(p.xy / max(length(p.xy), 1e-6), 0.0);
     float cg = dot(hd, sun_dir_world), g = haze_frame.y;
     float pr = 3.0 / (16.0 * PI) * (1.0 + cg * cg);
     float hg = 1.0 + g * g - 2.0 * g * cg;
     float pm = (1.0 - g * g) / (4.0 * PI * hg * sqrt(hg));
     vec3 sky_h = haze_ray * pr + haze_mie * pm;
-#ifdef QUALITY_HIGH
-    return vec4(sky_h * (vec3(1.0) - t), t.g);
-#else
     // low quality mixes in display space (ocean.frag): the tone-mapped horizon
     return vec4(tone_map(sky_h) * (1.0 - t.g), t.g);
-#endif
 }
+#endif
 
 #ifdef QUALITY_HIGH
 // Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
@@ -233,7 +248,8 @@ void main()
     v_base = vec4(a_geo_slope.zw + const_slope.zw + unresolved_var, a_geo_k.xy + const_k.xy);
     // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
     vec3 r = reflect(-v, n);
-    v_extra = vec2((1.0 - a_geo_k.z) * const_k.z, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))));
+    v_extra = vec3((1.0 - a_geo_k.z) * const_k.z, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))),
+                   haze_t(a_pos));
 #if FS_WHITECAPS == 0
     // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
     // moments alone, so it is evaluated here and v_extra.x carries it (exact where no pattern
@@ -253,6 +269,8 @@ void main()
 #if FS_PATTERNS > 3
     v_uv3 = pattern_uv_offset[3] + a_rest * pattern_inv_size[3];
 #endif
+#ifndef QUALITY_HIGH
     v_fog = haze(a_pos);
+#endif
     gl_Position = world_to_clip * vec4(a_pos, 1.0);
 }

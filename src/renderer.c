@@ -36,7 +36,8 @@ enum ocean_uniform {
     OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
-    OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_COUNT
+    OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_RAY_F,
+    OU_HAZE_MIE_F, OU_HAZE_SUN_F, OU_HAZE_TAU_F, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -45,7 +46,8 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "wc_scale", "wc_bias", "lin_s0", "ds_offset", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
-    "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame"
+    "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
+    "haze_ray_f", "haze_mie_f", "haze_sun_f", "haze_tau_f"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -1062,6 +1064,13 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         glUniform3fv(u[OU_HAZE_RAY], 1, ray);
         glUniform3fv(u[OU_HAZE_MIE], 1, mie);
         glUniform2f(u[OU_HAZE_FRAME], km, hz.mie_g);
+        /* high quality evaluates the in-scatter per pixel (ocean.frag): its own names, as a
+         * uniform both stages declare needs one precision */
+        glUniform3fv(u[OU_HAZE_RAY_F], 1, ray);
+        glUniform3fv(u[OU_HAZE_MIE_F], 1, mie);
+        glUniform3f(u[OU_HAZE_SUN_F], r->sky.sun_dir[0], r->sky.sun_dir[1], hz.mie_g);
+        glUniform3f(u[OU_HAZE_TAU_F], hz.tau_ext[0] / hz.tau_ext[1], 1.0f,
+                    hz.tau_ext[2] / hz.tau_ext[1]);
     }
     glUniform3fv(u[OU_SUN_IRR], 1, sun);
     glUniform3fv(u[OU_SEA_RADIANCE], 1, sea);

@@ -119,6 +119,16 @@ for src in "$dir"/*.vert "$dir"/*.frag; do
             fi
             if log=$(glslangValidator "$out" 2>&1); then
                 pass=$((pass + 1))
+                # GLES 2 guarantees 8 varying vectors (GLES 3: 16): count the rows the
+                # variant's varyings take, packed as GLSL ES 1.00 Appendix A.7 does
+                # (tools/varyings.awk), and refuse a variant a minimal device cannot link
+                if [ "$stage" = vert ] && [ "$tier" != GLES3 ]; then
+                    rows=$(glslangValidator -E "$out" 2>/dev/null | awk -f tools/varyings.awk)
+                    if [ "${rows:-99}" -gt 8 ]; then
+                        pass=$((pass - 1)); fail=$((fail + 1))
+                        echo "FAIL $base ($what): its varyings take $rows rows of GLES 2's 8"
+                    fi
+                fi
             else
                 fail=$((fail + 1))
                 echo "FAIL $base ($what):"
