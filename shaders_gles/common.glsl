@@ -13,6 +13,16 @@ vec2 sky_map_uv(vec3 r)
     return vec2(0.5) + 0.5 * r.xy / (1.0 + r.z);
 }
 
+// The sky's radiance at the horizon in a direction whose angle to the sun has cosine cg
+// (sky.h sky_haze: the Rayleigh and Mie phase functions times its horizon terms ray, mie;
+// Henyey-Greenstein g): what a long path through the air scatters in (ocean.vert, ocean.frag).
+vec3 horizon_sky(float cg, float g, vec3 ray, vec3 mie)
+{
+    float hg = 1.0 + g * g - 2.0 * g * cg;
+    return ray * (3.0 / (16.0 * PI) * (1.0 + cg * cg)) +
+           mie * ((1.0 - g * g) / (4.0 * PI * hg * sqrt(hg)));
+}
+
 // erf by Abramowitz & Stegun 7.1.25: |error| <= 2.5e-5 in exact arithmetic, well below what
 // mediump (fp16, 11-bit mantissa) resolves; three terms instead of 7.1.26's five.
 float erf_as(float x)

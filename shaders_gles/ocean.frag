@@ -38,10 +38,10 @@ uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x
 uniform float whitecap_epsilon;     // Dupuy eq. 3 threshold on j
 uniform vec4 wc_scale[4];
 uniform vec4 wc_bias[4];
-uniform vec3 haze_ray_f;            // sky.h sky_haze's horizon terms (x exposure), as ocean.vert's
-uniform vec3 haze_mie_f;
-uniform vec3 haze_sun_f;            // the sun's direction xy; Henyey-Greenstein g
-uniform vec3 haze_tau_f;            // each channel's optical depth over green's
+uniform vec3 haze_ray;              // sky.h sky_haze's horizon terms (x exposure); low quality
+uniform vec3 haze_mie;              // takes them in ocean.vert instead
+uniform vec3 haze_sun;              // the sun's direction xy; Henyey-Greenstein g
+uniform vec3 haze_tau_ratio;        // each channel's optical depth over green's
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here
 varying vec3 v_extra;               // foam clear fraction not fetched here (with no whitecap
@@ -225,12 +225,9 @@ void main()
     // the sky map's stereographic uv: its xy is the view's)
     vec2 az = v_lin.zw - vec2(0.5);
     az *= inversesqrt(max(dot(az, az), 1e-8));
-    float cg = dot(az, haze_sun_f.xy), g = haze_sun_f.z;
-    float hg = 1.0 + g * g - 2.0 * g * cg;
-    vec3 haze = haze_ray_f * (3.0 / (16.0 * PI) * (1.0 + cg * cg)) +
-                haze_mie_f * ((1.0 - g * g) / (4.0 * PI * hg * sqrt(hg)));
+    vec3 haze = horizon_sky(dot(az, haze_sun.xy), haze_sun.z, haze_ray, haze_mie);
     // each channel's transmittance from green's: e^{-tau_c m} = T_g^(tau_c / tau_g)
-    vec3 t = exp2(haze_tau_f * log2(max(v_extra.z, 1e-4)));
+    vec3 t = exp2(haze_tau_ratio * log2(max(v_extra.z, 1e-4)));
     gl_FragColor = vec4(tone_map(mix(haze, mix(clear_sea, foam_radiance, cover), t)), 1.0);
 #else
     // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal; the

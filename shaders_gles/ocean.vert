@@ -170,12 +170,8 @@ float haze_t(vec3 p)
 vec4 haze(vec3 p)
 {
     vec3 t = haze_trans(p);
-    vec3 hd = vec3(p.xy / max(length(p.xy), 1e-6), 0.0);
-    float cg = dot(hd, sun_dir_world), g = haze_frame.y;
-    float pr = 3.0 / (16.0 * PI) * (1.0 + cg * cg);
-    float hg = 1.0 + g * g - 2.0 * g * cg;
-    float pm = (1.0 - g * g) / (4.0 * PI * hg * sqrt(hg));
-    vec3 sky_h = haze_ray * pr + haze_mie * pm;
+    float cg = dot(p.xy / max(length(p.xy), 1e-6), sun_dir_world.xy);
+    vec3 sky_h = horizon_sky(cg, haze_frame.y, haze_ray, haze_mie);
     // low quality mixes in display space (ocean.frag): the tone-mapped horizon
     return vec4(tone_map(sky_h) * (1.0 - t.g), t.g);
 }

@@ -86,7 +86,7 @@ void camera_clip_planes(const struct camera *c, float *n, float *f)
     double alt = fabs(c->pos[2] - c->surface_z_m);
     double near_m = c->near_m > 0.0f ? c->near_m : fmax(0.05, fmin(0.1 * alt, 100.0));
     double far_m = c->far_m > 0.0f ? c->far_m
-                                    : fmax(5.0e4, 4.0 * sqrt(2.0 * 6.371e6 * fmax(alt, 1.0)));
+                                    : fmax(5.0e4, 4.0 * sqrt(2.0 * EARTH_RADIUS_M * fmax(alt, 1.0)));
     if (far_m <= near_m)
         far_m = near_m * 2.0;
     *n = (float)near_m;

@@ -1035,7 +1035,14 @@ static int frustum_slab_points(const double fwd[3], const double right[3], const
     return nq;
 }
 
-static double cam_depression(const struct grid_projection *p, double theta);
+/* The sea-plane row seen from the projector at angle theta above its axis, at forward
+ * distance s = alt_ray / tan(dp) (dp = -(pitch + theta), its depression), is seen by the
+ * camera at depression atan2(row_h, s); and back. Both work past the nadir (dp > 90 deg). */
+static double cam_depression(const struct grid_projection *p, double theta)
+{
+    double dp = -(p->pitch + theta);
+    return atan2(p->row_h * sin(dp), p->alt_ray * cos(dp));
+}
 
 /* The projected grid's frame for a camera (grid.h); 0 when no sea is in view.
  *
@@ -1132,9 +1139,8 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
     }
     sb = fmin(fmax(sb, y0), y1);
     p->pitch = pitch * M_PI / 180.0;
-    p->row_ang[0] = y1;
-    p->row_ang[1] = sb;
-    p->row_ang[2] = y0;
+    p->row_margin[0] = sb;
+    p->row_margin[1] = y0;
     p->row_h = fmax(p->alt, CAMERA_CLEARANCE_M);
     p->row_cam[0] = cam_depression(p, y1);
     p->row_cam[1] = cam_depression(p, sb);
@@ -1152,15 +1158,6 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
     return 1;
 }
 
-/* The sea-plane row seen from the projector at angle theta above its axis, at forward
- * distance s = alt_ray / tan(dp) (dp = -(pitch + theta), its depression), is seen by the
- * camera at depression atan2(row_h, s); and back. Both work past the nadir (dp > 90 deg). */
-static double cam_depression(const struct grid_projection *p, double theta)
-{
-    double dp = -(p->pitch + theta);
-    return atan2(p->row_h * sin(dp), p->alt_ray * cos(dp));
-}
-
 double grid_row_tan(const struct grid_projection *p, double v)
 {
     double theta;
@@ -1168,8 +1165,8 @@ double grid_row_tan(const struct grid_projection *p, double v)
         double dc = p->row_cam[0] + (p->row_cam[1] - p->row_cam[0]) * v / p->row_split;
         theta = -p->pitch - atan2(p->alt_ray * sin(dc), p->row_h * cos(dc));
     } else {
-        theta = p->row_ang[1] + (p->row_ang[2] - p->row_ang[1]) * (v - p->row_split) /
-                                    fmax(1.0 - p->row_split, 1e-12);
+        theta = p->row_margin[0] + (p->row_margin[1] - p->row_margin[0]) * (v - p->row_split) /
+                                       fmax(1.0 - p->row_split, 1e-12);
     }
     return tan(theta);
 }

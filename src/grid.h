@@ -61,8 +61,8 @@ void grid_row_span(const struct grid *g, int row, int *first, int *count, float 
  * Rows: the first row_split of them over the screen, evenly spaced in the camera's depression
  * angle (row_cam: the top row's and the screen bottom's, for a camera row_h above the sea
  * plane), so their spacing on the screen is the camera's whatever the projector; the rest
- * evenly in the projector's angle from row_ang[1] (the screen bottom) to row_ang[2].
- * row_ang[0] is the top row's angle (the projector's horizon or below it). Rays meet the
+ * evenly in the projector's angle from row_margin[0] (the screen bottom) to row_margin[1].
+ * Rays meet the
  * plane alt_ray below the projector, else end at dmax. The range bounds every sea-plane point
  * whose displaced image can reach the camera's frustum (coverage by construction, grid.c).
  * alt is the camera's height above the sea plane. */
@@ -70,7 +70,7 @@ struct grid_projection {
     double fwd[3], right[3], up[3];
     double alt, alt_ray, dmax, pitch;
     double col_ang[4], col_split[2];
-    double row_ang[3], row_cam[2], row_h, row_split;
+    double row_margin[2], row_cam[2], row_h, row_split;
 };
 
 /* The piecewise-linear angle at parameter x in [0, 1] through a[0] at 0, a[1] at s[0], ...,

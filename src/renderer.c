@@ -36,8 +36,8 @@ enum ocean_uniform {
     OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
-    OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_RAY_F,
-    OU_HAZE_MIE_F, OU_HAZE_SUN_F, OU_HAZE_TAU_F, OU_COUNT
+    OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_SUN,
+    OU_HAZE_TAU_RATIO, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -47,7 +47,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
-    "haze_ray_f", "haze_mie_f", "haze_sun_f", "haze_tau_f"
+    "haze_sun", "haze_tau_ratio"
 };
 
 enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
@@ -136,6 +136,7 @@ struct renderer {
     const struct swell_tables *t;
     struct grid *grid;
     struct sky sky;
+    struct sky_haze haze;       /* the sky's haze, its horizon terms x exposure */
     struct shader_program ocean[OCEAN_VARIANTS], skyp;   /* ocean[VARIANT(k, kw)] */
     struct shader_program sunp;
     GLint ou[OCEAN_VARIANTS][OU_COUNT], su[SU_COUNT], sunu[SU_COUNT];
@@ -459,7 +460,7 @@ static int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err
                         "renderer: sky upload", err);
 }
 
-static void update_exposure(struct renderer *r);
+static void update_sky_constants(struct renderer *r);
 
 /* Reinhard then gamma 2, as tone_map() in common.glsl, of a radiance times the exposure. */
 static float tone_map_1(float x)
@@ -619,7 +620,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
                 (float)p->col_ang[3]);
     glUniform4f(u[VU_ROWS], (float)p->row_cam[0], (float)p->row_cam[1], (float)p->row_split,
                 (float)p->row_h);
-    glUniform3f(u[VU_MARGIN], (float)p->row_ang[1], (float)p->row_ang[2], (float)-p->pitch);
+    glUniform3f(u[VU_MARGIN], (float)p->row_margin[0], (float)p->row_margin[1], (float)-p->pitch);
     glUniform3f(u[VU_STEP], 1.0f / (float)(w - 1), 1.0f / (float)(h - 1), (float)p->dmax);
     glUniform4fv(u[VU_SCALE], SWELL_MAX_PATTERNS, &sc[0][0]);
     glUniform4fv(u[VU_BIAS], SWELL_MAX_PATTERNS, &bi[0][0]);
@@ -649,7 +650,7 @@ static int create_textures(struct renderer *r, struct swell_err *err)
         scratch = 4 * (size_t)fr->width * fr->height;
     if (!(r->scratch = malloc(scratch)))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for derived textures");
-    update_exposure(r);
+    update_sky_constants(r);
     if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
                            "renderer: display sky map", &r->sky_display_tex, err)) ||
         (rc = upload_sky_display(r, err)))
@@ -805,15 +806,21 @@ static int create_buffers(struct renderer *r, struct swell_err *err)
     return gpu_check("renderer: buffer upload", err);
 }
 
-/* Automatic exposure: the sky's mean radiance E_sky / pi maps to x = 0.5, Reinhard 0.33 before
- * gamma (0.58 after), which leaves headroom for the brighter horizon and the glint. */
-static void update_exposure(struct renderer *r)
+/* What follows from a new sky. Automatic exposure: the sky's mean radiance E_sky / pi maps to
+ * x = 0.5, Reinhard 0.33 before gamma (0.58 after), which leaves headroom for the brighter
+ * horizon and the glint. The haze (sky_haze), its radiances scaled by that exposure. */
+static void update_sky_constants(struct renderer *r)
 {
     if (r->d.exposure > 0.0f) {
         r->exposure = r->d.exposure;
     } else {
         float e = 0.2f * r->sky.sky_irr[0] + 0.7f * r->sky.sky_irr[1] + 0.1f * r->sky.sky_irr[2];
         r->exposure = 0.5f * (float)M_PI / (e > 1e-4f ? e : 1e-4f);
+    }
+    sky_haze(&r->sky, &r->haze);
+    for (int c = 0; c < 3; c++) {
+        r->haze.ray[c] *= r->exposure;
+        r->haze.mie[c] *= r->exposure;
     }
 }
 
@@ -874,7 +881,7 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     r->sky = fresh;
     r->d.sun_elev_deg = elev_deg;
     r->d.sun_azim_deg = azim_deg;
-    update_exposure(r);
+    update_sky_constants(r);
     if ((rc = upload_sky_display(r, err)) ||
         (r->fresnel_sun_tex && (rc = upload_fresnel_sun(r, err))))
         return rc;
@@ -1050,27 +1057,19 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
     {
         /* aerial perspective (ocean.vert haze): air mass per metre of path from the camera's
-         * height h through the exponential atmosphere, (1 - e^{-h/H}) / h -> 1 / H at the sea */
-        struct sky_haze hz;
-        sky_haze(&r->sky, &hz);
-        double h = fmax(cam->pos[2], 0.0), hs = hz.scale_height_m;
+         * height h through the exponential atmosphere, (1 - e^{-h/H}) / h -> 1 / H at the sea;
+         * the horizon terms come from the sky (update_sky_constants). Low quality takes them
+         * in ocean.vert, high in ocean.frag: one name serves both, no program has both. */
+        const struct sky_haze *hz = &r->haze;
+        double h = fmax(cam->pos[2], 0.0), hs = hz->scale_height_m;
         float km = (float)(h > 1e-3 * hs ? -expm1(-h / hs) / h : (1.0 - 0.5 * h / hs) / hs);
-        float ray[3], mie[3];
-        for (int c = 0; c < 3; c++) {
-            ray[c] = e * hz.ray[c];
-            mie[c] = e * hz.mie[c];
-        }
-        glUniform3fv(u[OU_HAZE_TAU], 1, hz.tau_ext);
-        glUniform3fv(u[OU_HAZE_RAY], 1, ray);
-        glUniform3fv(u[OU_HAZE_MIE], 1, mie);
-        glUniform2f(u[OU_HAZE_FRAME], km, hz.mie_g);
-        /* high quality evaluates the in-scatter per pixel (ocean.frag): its own names, as a
-         * uniform both stages declare needs one precision */
-        glUniform3fv(u[OU_HAZE_RAY_F], 1, ray);
-        glUniform3fv(u[OU_HAZE_MIE_F], 1, mie);
-        glUniform3f(u[OU_HAZE_SUN_F], r->sky.sun_dir[0], r->sky.sun_dir[1], hz.mie_g);
-        glUniform3f(u[OU_HAZE_TAU_F], hz.tau_ext[0] / hz.tau_ext[1], 1.0f,
-                    hz.tau_ext[2] / hz.tau_ext[1]);
+        glUniform3fv(u[OU_HAZE_TAU], 1, hz->tau_ext);
+        glUniform3fv(u[OU_HAZE_RAY], 1, hz->ray);
+        glUniform3fv(u[OU_HAZE_MIE], 1, hz->mie);
+        glUniform2f(u[OU_HAZE_FRAME], km, hz->mie_g);
+        glUniform3f(u[OU_HAZE_SUN], r->sky.sun_dir[0], r->sky.sun_dir[1], hz->mie_g);
+        glUniform3f(u[OU_HAZE_TAU_RATIO], hz->tau_ext[0] / hz->tau_ext[1], 1.0f,
+                    hz->tau_ext[2] / hz->tau_ext[1]);
     }
     glUniform3fv(u[OU_SUN_IRR], 1, sun);
     glUniform3fv(u[OU_SEA_RADIANCE], 1, sea);

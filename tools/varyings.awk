@@ -6,7 +6,6 @@
     sub(/\/\/.*/, "", line)
     gsub(/(lowp|mediump|highp)[[:space:]]+/, "", line)
     n = split(line, w, /[[:space:],;]+/)
-    type = w[2] == "varying" ? w[3] : w[3]
     for (i = 1; i <= n; i++) if (w[i] == "varying") { type = w[i + 1]; first = i + 2; break }
     for (i = first; i <= n; i++) {
         if (w[i] == "") continue
