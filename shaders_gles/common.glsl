@@ -33,13 +33,12 @@ float erf_as(float x)
     return x < 0.0 ? -y : y;
 }
 
-// Whitecap coverage, Dupuy eq. 6: the fraction of k ~ N(mu, kvar) beyond the threshold eps,
-// combined with the baked persistent foam's clear fraction (both ocean shaders use it: the
-// fragment where it fetches whitecap tables, the vertex where no table is fetched).
-float whitecap_cover(float eps, float mu, float kvar, float foam_clear)
+// Whitecap coverage, Dupuy eq. 6: the fraction of the patterns' summed foam memory
+// ~ N(mu, kvar) below the threshold eps (bake.c; both ocean shaders use it: the fragment where
+// it fetches whitecap tables, the vertex where no table is fetched).
+float whitecap_cover(float eps, float mu, float kvar)
 {
-    float w = 0.5 + 0.5 * erf_as((eps - mu) * inversesqrt(2.0 * max(kvar, 1e-6)));
-    return 1.0 - (1.0 - clamp(w, 0.0, 1.0)) * foam_clear;
+    return clamp(0.5 + 0.5 * erf_as((eps - mu) * inversesqrt(2.0 * max(kvar, 1e-6))), 0.0, 1.0);
 }
 
 // Reinhard x / (1 + x) of a radiance already scaled by the exposure (the renderer folds the

@@ -44,8 +44,8 @@ uniform vec3 haze_sun;              // the sun's direction xy; Henyey-Greenstein
 uniform vec3 haze_tau_ratio;        // each channel's optical depth over green's
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here
-varying vec3 v_extra;               // foam clear fraction not fetched here (with no whitecap
-                                    // fetched: the coverage, ocean.vert), sky LOD offset, the
+varying vec3 v_extra;               // with no whitecap fetched the coverage (ocean.vert), else
+                                    // 0; sky LOD offset; the
                                     // haze's transmittance (ocean.vert haze_t)
 #else
 varying vec4 v_fog;                 // ocean.vert haze(): in-scattered light (display), its T
@@ -85,13 +85,12 @@ uniform sampler2D wc_tex3;
 #endif
 
 // Running sums over the fetched patterns: slope deviation, resolved slope variance
-// <s^2> - <s>^2 (Bruneton §4.1, mip-filtered moments), Dupuy's k mean and variance, product of
-// (1 - foam opacity).
+// <s^2> - <s>^2 (Bruneton §4.1, mip-filtered moments), the mean and variance of the foam
+// memory of Dupuy's k (eq. 7-8 on m_i; bake.c).
 vec2 g_ds;
 vec2 g_var;
 float g_mu;
 float g_kvar;
-float g_clear;
 
 #ifdef QUALITY_HIGH
 void add_slope(vec4 s)
@@ -102,11 +101,11 @@ void add_slope(vec4 s)
 
 void add_whitecap(vec4 k)
 {
-    // Dupuy eq. 7-8 per pattern; the variance is summed per pattern (sum <k_i^2> - <k_i>^2), the
-    // same uncorrelated-pattern assumption as eq. 8 without its cross terms of the means.
+    // Dupuy eq. 7-8 per pattern, on the foam memory m_i of k_i; the variance is summed per
+    // pattern (sum <m_i^2> - <m_i>^2), the same uncorrelated-pattern assumption as eq. 8
+    // without its cross terms of the means.
     g_mu += k.x;
     g_kvar += max(k.y - k.x * k.x, 0.0);
-    g_clear *= 1.0 - clamp(k.z, 0.0, 1.0);
 }
 #define SLOPE(i, tex, uv) add_slope(slope_bias[i] + slope_scale[i] * texture2D(tex, uv))
 #define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i] + wc_scale[i] * texture2D(tex, uv))
@@ -198,10 +197,9 @@ void main()
     // Refracted light, eq. 28.
     vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_radiance;
 
-    // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments, with the baked foam.
+    // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments of the foam memory.
     g_mu = v_base.z;
     g_kvar = v_base.w;
-    g_clear = v_extra.x;
 #if FS_WHITECAPS > 0
     WHITECAP(0, wc_tex0, v_uv0);
 #endif
@@ -215,7 +213,7 @@ void main()
     WHITECAP(3, wc_tex3, v_uv3);
 #endif
 #if FS_WHITECAPS > 0
-    float cover = whitecap_cover(whitecap_epsilon, g_mu, g_kvar, g_clear);
+    float cover = whitecap_cover(whitecap_epsilon, g_mu, g_kvar);
 #else
     float cover = v_extra.x;   // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif

@@ -81,7 +81,7 @@ vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
 attribute vec3 a_pos;       // displaced, camera-relative, m
 attribute vec2 a_rest;      // rest position on the sea plane, camera-relative, m
 attribute vec4 a_geo_slope; // CPU patterns: mean slope xy, resolved slope variance xy
-attribute vec3 a_geo_k;     // CPU patterns: Dupuy k mean, k variance, foam opacity
+attribute vec2 a_geo_k;     // CPU patterns: foam memory mean, variance (Dupuy eq. 7-8)
 #endif
 
 uniform mat4 world_to_clip;             // camera-relative world -> clip
@@ -106,7 +106,7 @@ varying vec4 v_lin_dy;      // ... and s.y
 #ifdef QUALITY_HIGH
 uniform float sky_map_size;             // texels
 uniform vec4 const_slope;               // slots not fetched: -, -, slope variance xy
-uniform vec3 const_k;                   // ...their k mean, k variance, foam clear fraction
+uniform vec2 const_k;                   // ...their foam memory mean and variance
 uniform vec2 unresolved_var;            // slope variance below every table (Bruneton eq. 4)
 uniform vec2 total_var;                 // every pattern's slope variance + unresolved_var
 #if FS_WHITECAPS == 0
@@ -115,7 +115,7 @@ uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's
 #endif
 varying vec4 v_sun;
 varying vec4 v_base;
-varying vec3 v_extra;       // foam clear fraction, sky LOD offset, the haze's transmittance
+varying vec3 v_extra;       // coverage (no whitecap fetched), sky LOD offset, the haze's transmittance
                             // (so high quality's varyings fit GLES2's 8 rows)
 #endif
 #if FS_PATTERNS > 0
@@ -212,7 +212,7 @@ void main()
 #endif
     vec3 a_pos = vec3(a_rest + disp.xy, disp.z - grid_frame.z - dot(a_rest, a_rest) * EARTH_DROP_K);
     vec4 a_geo_slope = vec4(0.0);   // no CPU patterns on these tiers
-    vec3 a_geo_k = vec3(0.0);
+    vec2 a_geo_k = vec2(0.0);
 #endif
     vec3 v = normalize(-a_pos);
     // the sphere's own slope at the rest point (its drop r^2 / (2 R) differentiated) tilts
@@ -244,13 +244,13 @@ void main()
     v_base = vec4(a_geo_slope.zw + const_slope.zw + unresolved_var, a_geo_k.xy + const_k.xy);
     // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
     vec3 r = reflect(-v, n);
-    v_extra = vec3((1.0 - a_geo_k.z) * const_k.z, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))),
+    v_extra = vec3(0.0, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))),
                    haze_t(a_pos));
 #if FS_WHITECAPS == 0
     // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
     // moments alone, so it is evaluated here and v_extra.x carries it (exact where no pattern
     // is resolved per vertex, as the moments are then the same at every vertex).
-    v_extra.x = whitecap_cover(whitecap_epsilon_v, v_base.z, v_base.w, v_extra.x);
+    v_extra.x = whitecap_cover(whitecap_epsilon_v, v_base.z, v_base.w);
 #endif
 #endif
 #if FS_PATTERNS > 0

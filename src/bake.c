@@ -1,24 +1,21 @@
 /* bake.c - the whole bake: sea state -> patterns -> looping fields -> whitecaps -> tables.
  *
- * How the patterns combine for breaking (the issue asks us to decide and show it holds):
- * the n patterns sample disjoint bands, so their Jacobian perturbations are independent. Each
- * pattern i gets its own lambda_min_i (Tessendorf 2023 §2, of J_i = I + lambda grad D_i) and its
- * own looping foam map O_i (eq. 7-8) on its own periodic grid - the only grid on which a map can
- * loop in space and time and be mipmapped. One threshold lambda_T is shared, solved so that the
- * union of the patterns' whitecaps, W = 1 - prod_i (1 - W_i) with W_i from eq. 11, equals the
- * wind-speed model (algorithm 1 applied to the union). The renderer combines the maps the same
- * way. tests/unit/test_bake.c checks on a common fine grid that the union's coverage matches
- * the model and that its foam lies where the full multi-pattern Jacobian breaks.
+ * How the patterns combine for breaking (issue 13: foam baked per pattern repeated on each
+ * pattern's own tile, identical clusters on a 50 m lattice seen from above): breaking and foam
+ * are thresholds on the patterns' summed Dupuy k (eq. 7), which no single tile repeats. Each
+ * breaking pattern bakes k_i and its foam memory m_i (whitecap_memory_loop: the (min, +) form of
+ * Tessendorf 2023 eq. 8, rising at a rate r since the last break), both loop on the pattern's
+ * own grid and are mipmapped. The patterns are independent (disjoint bands), so the
+ * distribution of a sum is the convolution of the per-pattern histograms (whitecap_sum): one
+ * epsilon makes the instantaneous breaking {sum k_i < epsilon} eq. 13's <Theta> (algorithm 1's
+ * threshold from the CDF, on the combined field), and r is bisected so that the foam
+ * {sum m_i < epsilon} covers the wind model's W - the fraction eq. 11 says eq. 8 sustains. The
+ * renderer sums the prefiltered means and variances of m_i (Dupuy eq. 6-8) against epsilon.
  *
  * Only patterns at least FOAM_MIN_PATTERN_M across carry whitecaps (always the largest): a
- * pattern of a few metres repeats every few metres, and foam (and Dupuy's k_i) drawn from it
- * showed as a visible lattice in storm scenes. Whitecaps are features of the dominant waves;
- * the small patterns keep their slopes and contribute the constant 1/n to Dupuy's j (eq. 7).
- *
- * Foam input is sub-texel: eq. 8's Theta per texel becomes the share B of the texel's area
- * (4 x 4 sub-samples of the bilinear lambda_min) below lambda_T (whitecap.h), so the foam's edge
- * follows the breaking contour instead of the texel grid. Algorithm 1's <Theta> is the mean of
- * that same B, and the final lambda_T is bisected on the loop's measured eq. 9 fraction.
+ * pattern of a few metres repeats every few metres, and its k_i drawn as foam showed as a
+ * visible lattice in storm scenes. Whitecaps are features of the dominant waves; the small
+ * patterns keep their slopes and contribute the constant 1/n to Dupuy's j (eq. 7).
  */
 #include "bake.h"
 
@@ -125,11 +122,9 @@ static void progress(const struct bake_opts *o, double done, const char *stage)
 struct pattern_work {
     struct ocean *ocean;
     float *slope, *white, *disp;  /* float chains, level 0 filled per frame */
-    float *lmin;                  /* F * N * N */
-    struct whitecap_cover cover;  /* sub-texel breaking coverage of lmin (breaking patterns) */
-    double k_mean, k_var;
+    float *k;                     /* Dupuy's k_i (eq. 7), F * N * N */
+    float *mem;                   /* its foam memory m_i at the current rate, F * N * N */
     int breaks;                   /* carries whitecaps (see top) */
-    double alpha;                 /* eq. 11's per-frame foam decay for this pattern's dt */
 };
 
 static void pattern_work_free(struct pattern_work *w)
@@ -138,8 +133,8 @@ static void pattern_work_free(struct pattern_work *w)
     free(w->slope);
     free(w->white);
     free(w->disp);
-    whitecap_cover_destroy(&w->cover);
-    free(w->lmin);
+    free(w->k);
+    free(w->mem);
     memset(w, 0, sizeof *w);
 }
 
@@ -204,11 +199,11 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     w->white = calloc(chain, sizeof(float));
     /* displacement: level 0 per frame now, box-filtered down to the geometry size later */
     w->disp = calloc(quantize_chain_floats(n, n, F, ilog2(n / s->size_geo) + 1), sizeof(float));
-    w->lmin = calloc(texels * (size_t)F, sizeof(float));
-    if (!w->slope || !w->white || !w->disp || !w->lmin)
+    w->k = calloc(texels * (size_t)F, sizeof(float));
+    w->mem = calloc(texels * (size_t)F, sizeof(float));
+    if (!w->slope || !w->white || !w->disp || !w->k || !w->mem)
         return swell_fail(err, SWELL_E_NOMEM, "pattern %d: cannot allocate %zu floats of fields",
                           index, chain * 2 + texels * 5 * (size_t)F);
-    double ksum = 0.0, ksum2 = 0.0;
     for (int f = 0; f < F; f++) {
         struct ocean_fields fl;
         if ((r = ocean_eval(w->ocean, f, &fl, err)))
@@ -216,41 +211,27 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
         float *sl = w->slope + texels * 4 * (size_t)f;
         float *wh = w->white + texels * 4 * (size_t)f;
         float *dp = w->disp + texels * 4 * (size_t)f;
-        float *lm = w->lmin + texels * (size_t)f;
+        float *kf = w->k + texels * (size_t)f;
         for (size_t i = 0; i < texels; i++) {
             float a = fl.jxx[i], b = fl.jyy[i], c = fl.jxy[i];
             float k = w->breaks ? whitecap_dupuy_k(a, b, c, s->patterns)  /* Dupuy eq. 7 */
                                 : 1.0f / (float)s->patterns;
-            float lmn = whitecap_lambda_min(a, b, c);
             sl[i * 4 + 0] = fl.sx[i];
             sl[i * 4 + 1] = fl.sy[i];
             sl[i * 4 + 2] = fl.sx[i] * fl.sx[i];
             sl[i * 4 + 3] = fl.sy[i] * fl.sy[i];
-            wh[i * 4 + 0] = k;
+            wh[i * 4 + 0] = k;       /* the foam memory m_i, once its rate is solved */
             wh[i * 4 + 1] = k * k;   /* eq. 8 */
-            wh[i * 4 + 2] = 0.0f;    /* foam opacity, after the threshold is known */
-            wh[i * 4 + 3] = lmn;
+            wh[i * 4 + 2] = 0.0f;
+            wh[i * 4 + 3] = k;
             dp[i * 4 + 0] = fl.dx[i];
             dp[i * 4 + 1] = fl.dy[i];
             dp[i * 4 + 2] = fl.dz[i];
             dp[i * 4 + 3] = 0.0f;
-            lm[i] = lmn;
-            ksum += k;
-            ksum2 += (double)k * k;
+            kf[i] = k;
         }
         progress(opts, (index + (f + 1.0) / F) / (s->patterns + 1.0), "patterns");
     }
-    double cnt = (double)texels * F;
-    w->k_mean = ksum / cnt;
-    w->k_var = ksum2 / cnt - w->k_mean * w->k_mean;
-    if (w->breaks) {
-        /* foam from the share of each texel's area that breaks, not a yes/no at its centre */
-        struct whitecap_cover_desc cd = { .lambda_min = w->lmin, .width = n, .height = n,
-                                          .frames = F };
-        if ((r = whitecap_cover_create(&cd, &w->cover, err)))
-            return swell_err_context(err, "pattern %d", index);
-    }
-
     struct ocean_stats st;
     ocean_get_stats(w->ocean, &st);
     struct swell_pattern_info *po = &out->pattern[index];
@@ -262,70 +243,73 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     return 0;
 }
 
-/* Smallest and largest lambda_min sub-sample over the first np patterns. */
-static void lmin_range(const struct pattern_work *w, int np, float *lo, float *hi)
+/* P(offset + sum_i X_i < x) for the breaking patterns' X_i = k_i (memory 0) or m_i (1). */
+static int pattern_sum(const struct seastate *s, struct pattern_work *w, int np, int memory,
+                       struct whitecap_sum *out, struct swell_err *err)
 {
-    whitecap_cover_extent(&w[0].cover, lo, hi);
-    for (int i = 1; i < np; i++) {
-        float l, h;
-        whitecap_cover_extent(&w[i].cover, &l, &h);
-        *lo = fminf(*lo, l);
-        *hi = fmaxf(*hi, h);
+    const float *smp[SWELL_MAX_PATTERNS];
+    size_t cnt[SWELL_MAX_PATTERNS];
+    for (int i = 0; i < np; i++) {
+        smp[i] = memory ? w[i].mem : w[i].k;
+        cnt[i] = (size_t)s->size_fs * (size_t)s->size_fs * (size_t)s->frames;
     }
+    /* the patterns that carry no whitecaps add their constant 1/n each (eq. 7) */
+    return whitecap_sum_create(smp, cnt, np, (double)(s->patterns - np) / s->patterns, out, err);
 }
 
-/* Shared lambda_T so that the union of the patterns' whitecaps equals the model (see top).
- * <Theta> of eq. 11-12 is the mean sub-texel coverage B over the same sub-samples the foam
- * loop uses (eq. 8 with B: <W> = <B> + a <W> - a <B W>, so eq. 11 holds with <Theta> = <B>).
- * Over all samples: whitecap_cdf() follows eq. 12 literally (lambda_min >= 0 only), but the
- * foam update fires on negative lambda_min too (folded crests), so the fraction the threshold
- * targets must count them or the measured fraction (eq. 9) overshoots the model. */
-static float solve_threshold(struct pattern_work *w, int np, double target, double *theta_union)
+/* Every breaking pattern's foam memory at rate r (k per second, per its own frame spacing). */
+static int memory_at(const struct seastate *s, const struct swell_tables *out,
+                     struct pattern_work *w, int np, double rate, struct swell_err *err)
 {
-    float lo, hi;
-    lmin_range(w, np, &lo, &hi);
-    hi = nextafterf(hi, INFINITY);
-    for (int it = 0; it < 64; it++) {
-        float mid = 0.5f * (lo + hi);
-        if (mid <= lo || mid >= hi)
-            break;   /* adjacent floats */
-        double keep = 1.0;
-        for (int i = 0; i < np; i++)
-            keep *= 1.0 - whitecap_ensemble_fraction(whitecap_cover_mean(&w[i].cover, mid),
-                                                     w[i].alpha);
-        if (1.0 - keep < target)
+    size_t texels = (size_t)s->size_fs * (size_t)s->size_fs;
+    for (int i = 0; i < np; i++) {
+        float step = (float)(rate * out->pattern[i].period_s / s->frames);
+        int r = whitecap_memory_loop(w[i].k, texels, s->frames, step, w[i].mem, err);
+        if (r)
+            return r;
+    }
+    return 0;
+}
+
+#define RATE_ITERATIONS 40
+
+/* Algorithm 1 on the combined field, then the foam memory's rate (see top): epsilon from the
+ * CDF of sum k_i at eq. 13's <Theta>; the rate by bisection in log r so that
+ * P(sum m_i < epsilon) = W (monotone: a faster rise leaves less foam). The memories are left at
+ * the solved rate. */
+static int solve_whitecaps(const struct seastate *s, struct swell_tables *out,
+                           struct pattern_work *w, int np, struct swell_err *err)
+{
+    struct whitecap_sum sum;
+    double w_model = whitecap_model_fraction(s->whitecap_model, s->wind_speed_mps);
+    /* eq. 13's alpha: eq. 7's decay over the largest pattern's frame spacing */
+    double alpha = exp2(-(out->pattern[0].period_s / s->frames) / s->foam_half_life_s);
+    double theta = whitecap_breaking_fraction(w_model, alpha);
+    int r = pattern_sum(s, w, np, 0, &sum, err);
+    if (r)
+        return r;
+    double eps = whitecap_sum_quantile(&sum, theta);
+    whitecap_sum_destroy(&sum);
+    /* log2 of the rate: from far slower than any loop (2^-20 k/s) to a rise of 2^10 k/s, at
+     * which no memory outlasts a frame */
+    double lo = -20.0, hi = 10.0, covered = 0.0;
+    for (int it = 0; it <= RATE_ITERATIONS; it++) {
+        double mid = it == RATE_ITERATIONS ? hi : 0.5 * (lo + hi);
+        if ((r = memory_at(s, out, w, np, exp2(mid), err)) ||
+            (r = pattern_sum(s, w, np, 1, &sum, err)))
+            return r;
+        covered = whitecap_sum_cdf(&sum, eps);
+        whitecap_sum_destroy(&sum);
+        if (covered > w_model)
             lo = mid;
         else
             hi = mid;
     }
-    double keep = 1.0;
-    for (int i = 0; i < np; i++)
-        keep *= 1.0 - whitecap_cover_mean(&w[i].cover, hi);
-    *theta_union = 1.0 - keep;
-    return hi;
-}
-
-#define THRESHOLD_ITERATIONS 16
-
-/* Foam loops (eq. 8 with the sub-texel coverage B) of every pattern at threshold lt;
- * *keep = prod (1 - W_i), W_i by eq. 9.
- * With store set, the opacities go into the whitecap chains. */
-static int foam_union(const struct seastate *s, const struct swell_tables *out,
-                      struct pattern_work *w, int np, float lt, float *tmp, int store,
-                      double *keep, struct swell_err *err)
-{
-    size_t texels = (size_t)s->size_fs * (size_t)s->size_fs, count = texels * (size_t)s->frames;
-    *keep = 1.0;
-    for (int i = 0; i < np; i++) {
-        float dt = out->pattern[i].period_s / s->frames;
-        int r = whitecap_foam_loop(&w[i].cover, lt, dt, s->foam_half_life_s, tmp, err);
-        if (r)
-            return r;
-        if (store)
-            for (size_t j = 0; j < count; j++)
-                w[i].white[j * 4 + 2] = tmp[j];
-        *keep *= 1.0 - whitecap_measured_fraction(tmp, count);
-    }
+    out->whitecap_fraction_model = (float)w_model;
+    out->whitecap_fraction_measured = (float)covered;
+    out->whitecap_breaking_fraction = (float)theta;
+    out->whitecap_epsilon = (float)eps;
+    out->foam_recovery_per_s = (float)exp2(hi);
     return 0;
 }
 
@@ -333,7 +317,6 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
                struct swell_tables *out, struct swell_err *err)
 {
     struct pattern_work work[SWELL_MAX_PATTERNS];
-    float *tmp = NULL;
     int r;
     memset(out, 0, sizeof *out);
     memset(work, 0, sizeof work);
@@ -367,52 +350,21 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
         if ((r = bake_pattern_fields(&s, &out->pattern[i], i, &work[i], opts, out, err)))
             goto fail;
 
-    /* Whitecaps: Tessendorf 2023 algorithm 1 on the union of patterns, then eq. 7-8 per pattern */
+    /* Whitecaps: Tessendorf 2023 algorithm 1 on the patterns combined, the foam memory */
     progress(opts, s.patterns / (s.patterns + 1.0), "whitecaps");
-    /* eq. 11's alpha: the per-frame decay each pattern's foam loop actually applies (eq. 7
-     * with the half-life over that pattern's frame spacing), so the eq. 9 fraction of the baked
-     * loop is what eq. 11 predicts; the paper's fixed SWELL_WHITECAP_ALPHA belongs to its own
-     * time step. */
-    for (int i = 0; i < s.patterns; i++)
-        work[i].alpha = exp(-(out->pattern[i].period_s / F) * log(2.0) / s.foam_half_life_s);
-    double w_model = whitecap_model_fraction(s.whitecap_model, s.wind_speed_mps);
-    double theta_union = 0.0;
-    out->whitecap_fraction_model = (float)w_model;
-    float lt = solve_threshold(work, foam_patterns, w_model, &theta_union);
-    out->lambda_t_algorithm1 = lt;
-    tmp = malloc(count * sizeof(float));
-    if (!tmp) {
-        r = swell_fail(err, SWELL_E_NOMEM, "cannot allocate the foam buffer (%zu floats)", count);
+    if ((r = solve_whitecaps(&s, out, work, foam_patterns, err)))
         goto fail;
-    }
-    /* Algorithm 1 (eq. 11-13) assumes breaking uncorrelated from frame to frame; in a loop the
-     * same crests break every period, so the eq. 9 fraction of the baked loop falls short of
-     * the model. Refine lambda_T by bisection on the measured union fraction of the loop,
-     * starting from algorithm 1's value (monotone: a higher threshold only adds foam). */
-    float lo, hi;
-    lmin_range(work, foam_patterns, &lo, &hi);
-    double keep = 1.0;
-    for (int it = 0; it < THRESHOLD_ITERATIONS + 1; it++) {
-        if ((r = foam_union(&s, out, work, foam_patterns, lt, tmp, it == THRESHOLD_ITERATIONS,
-                            &keep, err)))
-            goto fail;
-        if (it == THRESHOLD_ITERATIONS)
-            break;
-        if (1.0 - keep < w_model)
-            lo = lt;
-        else
-            hi = lt;
-        lt = 0.5f * (lo + hi);
-    }
-    out->lambda_t = lt;
-    double mu = 0.0, var = 0.0, var_h = 0.0;
+    double var_h = 0.0;
     for (int i = 0; i < s.patterns; i++) {
-        mu += work[i].k_mean;
-        var += work[i].k_var;
         var_h += out->pattern[i].var_h;
+        if (!work[i].breaks)
+            continue;
+        for (size_t j = 0; j < count; j++) {
+            float m = work[i].mem[j];
+            work[i].white[j * 4 + 0] = m;
+            work[i].white[j * 4 + 1] = m * m;   /* eq. 8's second moment, of m */
+        }
     }
-    out->whitecap_fraction_measured = (float)(1.0 - keep);
-    out->whitecap_epsilon = (float)whitecap_dupuy_epsilon(theta_union, mu, var);
     out->hs_m = (float)(4.0 * sqrt(var_h));
 
     /* Tables: per pattern slope + whitecap (mipmapped), displacement (geometry size) */
@@ -449,12 +401,10 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
         goto fail;
     out->count++;
 
-    free(tmp);
     progress(opts, 1.0, "done");
     return 0;
 
 fail:
-    free(tmp);
     for (int i = 0; i < SWELL_MAX_PATTERNS; i++)
         pattern_work_free(&work[i]);
     tables_destroy(out);

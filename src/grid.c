@@ -855,8 +855,7 @@ static float displace(struct grid *g, struct disp_frame *df, int nd)
 }
 
 /* The vertex attributes of n vertices from their rest positions and summed displacements d
- * (x, y, z, 0): the moments are 0 (foam opacity 0) without CPU patterns, else the foam slot's
- * clear fraction becomes the opacity. */
+ * (x, y, z, 0); the moments are 0 without CPU patterns. */
 static inline void write_tail(float *restrict vx, int n, const float *restrict rx,
                               const float *restrict ry, const float *restrict d, float z, int cpu)
 {
@@ -866,12 +865,9 @@ static inline void write_tail(float *restrict vx, int n, const float *restrict r
         vx[GRID_A_POS + 2] = z - (rx[e] * rx[e] + ry[e] * ry[e]) * EARTH_DROP_K + d[4 * e + 2];
         vx[GRID_A_REST] = rx[e];
         vx[GRID_A_REST + 1] = ry[e];
-        if (cpu) {
-            vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
-        } else {
-            for (int c = GRID_A_SLOPE; c <= GRID_A_FOAM; c++)
+        if (!cpu)
+            for (int c = GRID_A_SLOPE; c <= GRID_A_PAD; c++)
                 vx[c] = 0.0f;
-        }
     }
 }
 
@@ -881,7 +877,6 @@ static inline void write_one(float *restrict vx, f4 p, float y, const int cpu)
     memcpy(vx + GRID_A_POS, &p, sizeof(p));
     if (cpu) {
         vx[GRID_A_REST + 1] = y;
-        vx[GRID_A_FOAM] = 1.0f - vx[GRID_A_FOAM];
     } else {
         f4 r = { y, 0.0f, 0.0f, 0.0f }, zero = { 0.0f, 0.0f, 0.0f, 0.0f };
         memcpy(vx + GRID_A_REST + 1, &r, sizeof(r));
@@ -934,8 +929,7 @@ static void write_vertices(const struct grid *g, float *verts, float z, int cpu,
 
 /* Add CPU pattern f's slope and whitecap moments to every vertex: from the mip level whose
  * texel matches the vertex footprint, the mip texel then holding the footprint's first and
- * second moments (Bruneton §4.1, Dupuy eq. 7-8). The foam slot holds the clear fraction
- * prod(1 - foam_i) until grid_update turns it into the foam opacity. */
+ * second moments (Bruneton §4.1, Dupuy eq. 7-8; of the foam memory m_i, bake.c). */
 static void moment_pass(const struct grid *g, struct pattern_frame *f, float *verts)
 {
     struct grid_pattern *p = f->p;
@@ -956,7 +950,6 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
         memcpy(vx + GRID_A_SLOPE, &acc, sizeof(acc));
         vx[GRID_A_K] += q[0];
         vx[GRID_A_K + 1] += maxf(q[1] - q[0] * q[0], 0.0f);
-        vx[GRID_A_FOAM] *= 1.0f - clamp01(q[2]);
     }
 }
 
@@ -1488,9 +1481,8 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
     if (np) {
         for (int k = 0; k < g->nverts; k++) {
             float *vx = verts + (size_t)k * GRID_FLOATS;
-            for (int c = GRID_A_SLOPE; c < GRID_A_FOAM; c++)
+            for (int c = GRID_A_SLOPE; c <= GRID_A_PAD; c++)
                 vx[c] = 0.0f;
-            vx[GRID_A_FOAM] = 1.0f;
         }
         for (int i = 0; i < np; i++)
             moment_pass(g, &pf[i], verts);

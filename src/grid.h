@@ -17,10 +17,10 @@
 
 /* Vertex layout, floats: displaced position (3), rest position on the sea plane (2), mean
  * slope of the CPU patterns (2), resolved slope variance of the CPU patterns (2), Dupuy k mean
- * and variance of the CPU patterns (2), foam opacity of the CPU patterns (1). */
+ * and variance of the CPU patterns (2), one float of padding (48 bytes a vertex, whole vectors). */
 enum grid_attr {
     GRID_A_POS = 0, GRID_A_REST = 3, GRID_A_SLOPE = 5, GRID_A_SVAR = 7, GRID_A_K = 9,
-    GRID_A_FOAM = 11, GRID_FLOATS = 12
+    GRID_A_PAD = 11, GRID_FLOATS = 12
 };
 
 struct grid_desc {

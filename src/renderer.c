@@ -120,7 +120,7 @@ struct fs_slot {
     const struct swell_table *slope, *wc;
     struct chain_tex slope_tex, wc_tex;
     uint8_t *slope_b, *wc_b;          /* blended chains streamed each frame */
-    float top_slope[4], top_k[3];     /* dequantised top mip level: mean, variance, opacity */
+    float top_slope[4], top_k[2];     /* dequantised top mip level: mean, variance */
     float level_var[SLOT_LEVELS][2];  /* per mip level: mean within-texel slope variance x, y
                                        * of the first loop frame (set_run_lods, drop_lod) */
     float log2_density[2];            /* log2 texels per metre of the slope, whitecap table */
@@ -285,8 +285,7 @@ void renderer_destroy(struct renderer *r)
     free(r);
 }
 
-/* Channels 0..2 (k, k^2, foam opacity: what ocean.frag reads; channel 3 is the bake's lambda_min)
- * the same in every texel of every level and layer: the whitecaps of a pattern that carries
+/* Channels 0..2 (m, m^2, 0: what ocean.frag reads; channel 3 is the bake's k_i) the same in every texel of every level and layer: the whitecaps of a pattern that carries
  * none (bake.c) are a constant, never a texture. */
 static int whitecaps_constant(const struct swell_table *t)
 {
@@ -910,7 +909,6 @@ static void slot_constants(struct fs_slot *sl)
     top_texel(sl->wc, sl->wc_tex.tex[0] ? sl->wc_b : NULL, m);
     sl->top_k[0] = m[0];
     sl->top_k[1] = fmaxf(m[1] - m[0] * m[0], 0.0f);
-    sl->top_k[2] = 1.0f - fminf(fmaxf(m[2], 0.0f), 1.0f);
 }
 
 static void stream_textures(struct renderer *r, double t_s)
@@ -994,11 +992,10 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
 }
 
 /* A slot whose whitecaps are not fetched enters Dupuy's sums as its patch's constants. */
-static void add_k_constants(const struct fs_slot *sl, float ck[3])
+static void add_k_constants(const struct fs_slot *sl, float ck[2])
 {
     ck[0] += sl->top_k[0];
     ck[1] += sl->top_k[1];
-    ck[2] *= sl->top_k[2];
 }
 
 /* Uniforms of the variant fetching the first k slots' slopes and the first kw's whitecaps;
@@ -1012,7 +1009,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     float off[SWELL_MAX_PATTERNS][2] = { { 0 } }, inv[SWELL_MAX_PATTERNS] = { 0 };
     float ss[SWELL_MAX_PATTERNS][4] = { { 0 } }, sb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
-    float cs[4] = { 0.0f, 0.0f, 0.0f, 0.0f }, ck[3] = { 0.0f, 0.0f, 1.0f };
+    float cs[4] = { 0.0f, 0.0f, 0.0f, 0.0f }, ck[2] = { 0.0f, 0.0f };
     float sun[3], sea[3], foam[3], e = r->exposure;
     float unres[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
     for (int s = 0; s < r->nfs; s++) {
@@ -1045,7 +1042,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform4fv(u[OU_WC_SCALE], SWELL_MAX_PATTERNS, &ws[0][0]);
     glUniform4fv(u[OU_WC_BIAS], SWELL_MAX_PATTERNS, &wb[0][0]);
     glUniform4fv(u[OU_CONST_SLOPE], 1, cs);
-    glUniform3fv(u[OU_CONST_K], 1, ck);
+    glUniform2fv(u[OU_CONST_K], 1, ck);
     bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
     glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));
@@ -1325,7 +1322,7 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
                                   (const void *)(GRID_A_REST * sizeof(float)));
             glVertexAttribPointer(A_GEO_SLOPE, 4, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
                                   (const void *)(GRID_A_SLOPE * sizeof(float)));
-            glVertexAttribPointer(A_GEO_K, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
+            glVertexAttribPointer(A_GEO_K, 2, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
                                   (const void *)(GRID_A_K * sizeof(float)));
         }
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);

@@ -26,8 +26,9 @@ enum table_kind {
     TABLE_SLOPE,         /* per pattern: (sx, sy, sx^2, sy^2) slopes and their squares; mipmapped,
                             so a mip texel holds the footprint's first and second moments
                             (Bruneton 2010 §4.1: resolved slope variance = <s^2> - <s>^2) */
-    TABLE_WHITECAP,      /* per pattern: (k_i, k_i^2, foam opacity O_i, lambda_min_i) - Dupuy 2012
-                            eq. 7-8 moments, Tessendorf 2023 eq. 7-8 foam; mipmapped */
+    TABLE_WHITECAP,      /* per pattern: (m_i, m_i^2, 0, k_i) - the foam memory of Dupuy 2012's
+                            k_i (eq. 7; whitecap_memory_loop) and its second moment (eq. 8),
+                            nothing, k_i itself; mipmapped */
     TABLE_FRESNEL,       /* Hu 2006 §5.1: 2D Fresnel texture indexed by the local view vector;
                             RGB = view vector (for the sun term), A = exact Fresnel (eq. 2) */
     TABLE_FRESNEL_EFF,   /* Bruneton 2010 eq. 24: effective Fresnel F(cos theta_v, sigma_v);
@@ -75,14 +76,16 @@ struct swell_tables {
                                frames or beyond the last band): the BRDF's part (Bruneton eq. 4) */
     float mss_unresolved_y;
     float hs_m;             /* significant wave height 4 sqrt(var_h total), m */
-    float lambda_t;         /* whitecap threshold on lambda_min: algorithm 1 (Tessendorf 2023),
-                               refined so the looping foam's eq. 9 fraction meets the model */
-    float lambda_t_algorithm1; /* algorithm 1's threshold before that refinement */
+    float whitecap_epsilon; /* Dupuy 2012 eq. 3 threshold on the patterns' summed k (eq. 7): the
+                               instantaneous breaking {sum k_i < epsilon} covers eq. 13's
+                               <Theta> of the model's W (Tessendorf 2023 algorithm 1 on the CDF
+                               of the combined field; whitecap.h) */
+    float whitecap_breaking_fraction;  /* that <Theta> */
+    float foam_recovery_per_s;  /* rate r of the foam memory m' = min(k, m + r dt), k per s,
+                                   solved so that {sum m_i < epsilon} covers W */
     float whitecap_fraction_model;     /* W from the wind-speed model */
-    float whitecap_fraction_measured;  /* Tessendorf 2023 eq. 9 on the baked realization */
-    float whitecap_epsilon; /* Dupuy 2012 eq. 3 threshold on the Jacobian j, chosen so that the
-                               Gaussian coverage of eq. 6 equals the instantaneous breaking
-                               fraction <Theta> of Tessendorf eq. 12 */
+    float whitecap_fraction_measured;  /* the foam's covered fraction on the baked tables (eq. 9
+                                          with coverage for opacity): P(sum m_i < epsilon) */
     int count;
     struct swell_table table[SWELL_MAX_TABLES];
 };

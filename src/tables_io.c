@@ -73,8 +73,8 @@ static int manifest_write(const struct swell_tables *s, const struct tables_mani
     put(&t, "set.mss_unresolved_x = %.9g\n", (double)s->mss_unresolved_x);
     put(&t, "set.mss_unresolved_y = %.9g\n", (double)s->mss_unresolved_y);
     put(&t, "set.hs_m = %.9g\n", (double)s->hs_m);
-    put(&t, "set.lambda_t = %.9g\n", (double)s->lambda_t);
-    put(&t, "set.lambda_t_algorithm1 = %.9g\n", (double)s->lambda_t_algorithm1);
+    put(&t, "set.whitecap_breaking_fraction = %.9g\n", (double)s->whitecap_breaking_fraction);
+    put(&t, "set.foam_recovery_per_s = %.9g\n", (double)s->foam_recovery_per_s);
     put(&t, "set.whitecap_fraction_model = %.9g\n", (double)s->whitecap_fraction_model);
     put(&t, "set.whitecap_fraction_measured = %.9g\n", (double)s->whitecap_fraction_measured);
     put(&t, "set.whitecap_epsilon = %.9g\n", (double)s->whitecap_epsilon);
@@ -201,8 +201,9 @@ int manifest_read_memory(const void *buf, size_t len, const char *name_for_error
     if ((rc = get_f(&kv, "set.mss_unresolved_x", &s->mss_unresolved_x, err)) ||
         (rc = get_f(&kv, "set.mss_unresolved_y", &s->mss_unresolved_y, err)) ||
         (rc = get_f(&kv, "set.hs_m", &s->hs_m, err)) ||
-        (rc = get_f(&kv, "set.lambda_t", &s->lambda_t, err)) ||
-        (rc = get_f(&kv, "set.lambda_t_algorithm1", &s->lambda_t_algorithm1, err)) ||
+        (rc = get_f(&kv, "set.whitecap_breaking_fraction", &s->whitecap_breaking_fraction,
+                     err)) ||
+        (rc = get_f(&kv, "set.foam_recovery_per_s", &s->foam_recovery_per_s, err)) ||
         (rc = get_f(&kv, "set.whitecap_fraction_model", &s->whitecap_fraction_model, err)) ||
         (rc = get_f(&kv, "set.whitecap_fraction_measured", &s->whitecap_fraction_measured,
                     err)) ||

@@ -18,8 +18,10 @@
 
 #define TABLES_MANIFEST_NAME    "manifest.swell"
 #define TABLES_MANIFEST_MAGIC   "swell-manifest"
-#define TABLES_MANIFEST_VERSION 3   /* 2: Hu's Fresnel texture indexed by the view angle,
-                                       * 3: by a radius denser towards grazing (fresnel.h) */
+#define TABLES_MANIFEST_VERSION 4   /* 2: Hu's Fresnel texture indexed by the view angle,
+                                       * 3: by a radius denser towards grazing (fresnel.h),
+                                       * 4: whitecap tables hold the foam memory of the
+                                       *    combined k (bake.c), not per-pattern foam */
 #define TABLES_MANIFEST_MAX_BYTES (1u << 20)
 
 struct tables_manifest_entry {

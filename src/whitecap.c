@@ -118,204 +118,150 @@ int whitecap_threshold(const float *lambda_min, size_t count, double fraction, f
     return 0;
 }
 
-/* ---- sub-texel breaking coverage ------------------------------------------------------- */
+/* ---- foam memory and sums of independent patterns ---------------------------------------- */
 
-/* The sub x sub points of texel (x, y): offsets (2s + 1 - sub) / (2 sub) from its centre, each
- * a bilinear blend of the centre and the neighbour on that side (weight |offset|), separable:
- * along x on the three rows, then along y. Offset 0 (sub = 1, odd sub's middle) gives the
- * centre's own value exactly. */
-static void sub_samples(const float *lm, int w, int h, int x, int y, int sub, float *out)
+int whitecap_memory_loop(const float *k, size_t texels, int frames, float step, float *m,
+                         struct swell_err *err)
 {
-    int xm = x > 0 ? x - 1 : w - 1, xp = x + 1 < w ? x + 1 : 0;
-    int ym = y > 0 ? y - 1 : h - 1, yp = y + 1 < h ? y + 1 : 0;
-    const float *row[3] = { lm + (size_t)ym * (size_t)w, lm + (size_t)y * (size_t)w,
-                            lm + (size_t)yp * (size_t)w };
-    float hz[3][WHITECAP_SUB_MAX];
-    for (int s = 0; s < sub; s++) {
-        float o = (float)(2 * s + 1 - sub) / (float)(2 * sub);
-        float wt = fabsf(o);
-        int xn = o < 0.0f ? xm : xp;
-        for (int r = 0; r < 3; r++)
-            hz[r][s] = row[r][x] + wt * (row[r][xn] - row[r][x]);
-    }
-    for (int t = 0; t < sub; t++) {
-        float o = (float)(2 * t + 1 - sub) / (float)(2 * sub);
-        float wt = fabsf(o);
-        int rn = o < 0.0f ? 0 : 2;
-        for (int s = 0; s < sub; s++)
-            out[t * sub + s] = hz[1][s] + wt * (hz[rn][s] - hz[1][s]);
-    }
+    float *run = malloc(texels * sizeof *run);
+    if (!run)
+        return swell_fail(err, SWELL_E_NOMEM, "foam memory: cannot allocate %zu floats", texels);
+    for (size_t i = 0; i < texels; i++)
+        run[i] = INFINITY;
+    /* Pass 1 from m = +inf before frame 0 reaches frame F-1 with every n < F; pass 2 then sees
+     * every k(f - n) + n step with n < F around the loop (larger n only add whole loops of
+     * step >= 0, never lower). So pass 2 writes the steady state exactly. */
+    for (int pass = 0; pass < 2; pass++)
+        for (int f = 0; f < frames; f++) {
+            const float *kf = k + (size_t)f * texels;
+            float *mf = m + (size_t)f * texels;
+            for (size_t i = 0; i < texels; i++) {
+                float v = run[i] + step;
+                run[i] = kf[i] < v ? kf[i] : v;
+                if (pass)
+                    mf[i] = run[i];
+            }
+        }
+    free(run);
+    return 0;
 }
 
-int whitecap_cover_create(const struct whitecap_cover_desc *desc, struct whitecap_cover *out,
-                          struct swell_err *err)
+void whitecap_sum_destroy(struct whitecap_sum *s)
+{
+    if (!s)
+        return;
+    free(s->cum);
+    memset(s, 0, sizeof *s);
+}
+
+int whitecap_sum_create(const float *const *samples, const size_t *counts, int n, double offset,
+                        struct whitecap_sum *out, struct swell_err *err)
 {
     memset(out, 0, sizeof *out);
-    struct whitecap_cover_desc d = *desc;
-    if (d.sub == 0)
-        d.sub = WHITECAP_SUB_DEFAULT;
-    if (!d.lambda_min || d.width < 1 || d.height < 1 || d.frames < 1)
-        return swell_fail(err, SWELL_E_ARG,
-                          "whitecap cover: %d x %d texels x %d frames%s; need a lambda_min "
-                          "table of at least 1 x 1 x 1", d.width, d.height, d.frames,
-                          d.lambda_min ? "" : " and no samples");
-    if (d.sub < 1 || d.sub > WHITECAP_SUB_MAX)
-        return swell_fail(err, SWELL_E_ARG,
-                          "whitecap cover: %d sub-samples per texel side, need 1..%d (0 = %d)",
-                          d.sub, WHITECAP_SUB_MAX, WHITECAP_SUB_DEFAULT);
-    size_t texels = (size_t)d.width * (size_t)d.height, count = texels * (size_t)d.frames;
-    for (size_t i = 0; i < count; i++)
-        if (isnan(d.lambda_min[i]))
-            return swell_fail(err, SWELL_E_ARG,
-                              "whitecap cover: lambda_min of texel %zu, frame %zu is NaN; the "
-                              "Jacobian fields hold NaN (check the spectrum and choppiness)",
-                              i % texels, i / texels);
-    out->range = malloc(2 * count * sizeof *out->range);
-    if (!out->range)
-        return swell_fail(err, SWELL_E_NOMEM,
-                          "whitecap cover: cannot allocate %zu floats of sub-sample ranges",
-                          2 * count);
-    out->desc = d;
-    float smp[WHITECAP_SUB_MAX * WHITECAP_SUB_MAX];
-    int n = d.sub * d.sub;
-    for (int f = 0; f < d.frames; f++) {
-        const float *lm = d.lambda_min + (size_t)f * texels;
-        float *rg = out->range + 2 * (size_t)f * texels;
-        for (int y = 0; y < d.height; y++)
-            for (int x = 0; x < d.width; x++) {
-                sub_samples(lm, d.width, d.height, x, y, d.sub, smp);
-                float lo = smp[0], hi = smp[0];
-                for (int k = 1; k < n; k++) {
-                    lo = fminf(lo, smp[k]);
-                    hi = fmaxf(hi, smp[k]);
-                }
-                size_t i = (size_t)y * (size_t)d.width + (size_t)x;
-                rg[2 * i] = lo;
-                rg[2 * i + 1] = hi;
-            }
+    if (n < 1 || n > SWELL_WHITECAP_SUM_MAX)
+        return swell_fail(err, SWELL_E_ARG, "whitecap sum: %d variables, need 1..%d", n,
+                          SWELL_WHITECAP_SUM_MAX);
+    double lo[SWELL_WHITECAP_SUM_MAX], hi[SWELL_WHITECAP_SUM_MAX], span = 0.0;
+    for (int v = 0; v < n; v++) {
+        if (counts[v] == 0)
+            return swell_fail(err, SWELL_E_ARG, "whitecap sum: variable %d has no sample", v);
+        lo[v] = hi[v] = samples[v][0];
+        for (size_t i = 0; i < counts[v]; i++) {
+            double x = samples[v][i];
+            if (!isfinite(x))
+                return swell_fail(err, SWELL_E_ARG,
+                                  "whitecap sum: sample %zu of variable %d is %g; the Jacobian "
+                                  "fields are not finite (check the spectrum and choppiness)",
+                                  i, v, x);
+            lo[v] = x < lo[v] ? x : lo[v];
+            hi[v] = x > hi[v] ? x : hi[v];
+        }
+        span = hi[v] - lo[v] > span ? hi[v] - lo[v] : span;
     }
+    double h = span > 0.0 ? span / WHITECAP_SUM_BINS : 1.0;
+    int points = 1;
+    for (int v = 0; v < n; v++)
+        points += (int)ceil((hi[v] - lo[v]) / h) + 1;
+    double *acc = calloc((size_t)points, sizeof *acc);
+    double *nxt = calloc((size_t)points, sizeof *nxt);
+    double *one = calloc(WHITECAP_SUM_BINS + 3, sizeof *one);
+    if (!acc || !nxt || !one) {
+        free(acc);
+        free(nxt);
+        free(one);
+        return swell_fail(err, SWELL_E_NOMEM, "whitecap sum: cannot allocate %d grid points",
+                          points);
+    }
+    /* the sum so far sits on the grid offset + sum of the lo's + j h; mass split linearly
+     * between the two grid points around each sample, then convolved in */
+    acc[0] = 1.0;
+    int used = 1;
+    double base = offset;
+    for (int v = 0; v < n; v++) {
+        int pts = (int)ceil((hi[v] - lo[v]) / h) + 2;
+        memset(one, 0, (size_t)pts * sizeof *one);
+        double w = 1.0 / (double)counts[v];
+        for (size_t i = 0; i < counts[v]; i++) {
+            double t = (samples[v][i] - lo[v]) / h;
+            int j = (int)t;
+            j = j < 0 ? 0 : j > pts - 2 ? pts - 2 : j;
+            double f = t - j;
+            one[j] += w * (1.0 - f);
+            one[j + 1] += w * f;
+        }
+        memset(nxt, 0, (size_t)(used + pts - 1) * sizeof *nxt);
+        for (int a = 0; a < used; a++) {
+            if (acc[a] == 0.0)
+                continue;
+            for (int b = 0; b < pts; b++)
+                nxt[a + b] += acc[a] * one[b];
+        }
+        double *t = acc;
+        acc = nxt;
+        nxt = t;
+        used += pts - 1;
+        base += lo[v];
+    }
+    for (int j = 1; j < used; j++)
+        acc[j] += acc[j - 1];
+    double total = acc[used - 1];
+    for (int j = 0; j < used; j++)
+        acc[j] /= total;
+    free(nxt);
+    free(one);
+    out->lo = base;
+    out->h = h;
+    out->points = used;
+    out->cum = acc;
     return 0;
 }
 
-void whitecap_cover_destroy(struct whitecap_cover *c)
+double whitecap_sum_cdf(const struct whitecap_sum *s, double x)
 {
-    if (!c)
-        return;
-    free(c->range);
-    memset(c, 0, sizeof *c);
-}
-
-/* B of texel i of frame f: 0 or 1 from its sub-sample range unless lambda_t falls inside it. */
-static float cover_texel(const struct whitecap_cover *c, int f, size_t i, float lambda_t)
-{
-    const struct whitecap_cover_desc *d = &c->desc;
-    size_t texels = (size_t)d->width * (size_t)d->height;
-    const float *rg = c->range + 2 * ((size_t)f * texels + i);
-    if (!(lambda_t > rg[0]))
-        return 0.0f;
-    if (lambda_t > rg[1])
-        return 1.0f;
-    float smp[WHITECAP_SUB_MAX * WHITECAP_SUB_MAX];
-    int n = d->sub * d->sub, below = 0;
-    sub_samples(d->lambda_min + (size_t)f * texels, d->width, d->height,
-                (int)(i % (size_t)d->width), (int)(i / (size_t)d->width), d->sub, smp);
-    for (int k = 0; k < n; k++)
-        below += smp[k] < lambda_t;
-    return (float)below / (float)n;
-}
-
-void whitecap_cover_frame(const struct whitecap_cover *c, int frame, float lambda_t, float *b)
-{
-    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
-    for (size_t i = 0; i < texels; i++)
-        b[i] = cover_texel(c, frame, i, lambda_t);
-}
-
-double whitecap_cover_mean(const struct whitecap_cover *c, float lambda_t)
-{
-    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
-    double sum = 0.0;
-    for (int f = 0; f < c->desc.frames; f++)
-        for (size_t i = 0; i < texels; i++)
-            sum += cover_texel(c, f, i, lambda_t);
-    return sum / ((double)texels * (double)c->desc.frames);
-}
-
-void whitecap_cover_extent(const struct whitecap_cover *c, float *lo, float *hi)
-{
-    size_t count = (size_t)c->desc.width * (size_t)c->desc.height * (size_t)c->desc.frames;
-    *lo = c->range[0];
-    *hi = c->range[1];
-    for (size_t i = 1; i < count; i++) {
-        *lo = fminf(*lo, c->range[2 * i]);
-        *hi = fmaxf(*hi, c->range[2 * i + 1]);
-    }
-}
-
-/* One update of eq. 8 with Theta -> B for every texel of frame f: O' = B + (1 - B) a O. B = 1
- * gives 1 + 0 = 1 and B = 0 gives a O, both exactly (eq. 7's cases), so a binary cover
- * reproduces eq. 7 bit for bit. q, unless NULL, accumulates the product of the (1 - B) a
- * factors. */
-static void foam_step(const struct whitecap_cover *c, int f, const float *prev, float *next,
-                      float *q, float lambda_t, float decay)
-{
-    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
-    for (size_t i = 0; i < texels; i++) {
-        float b = cover_texel(c, f, i, lambda_t);
-        float keep = (1.0f - b) * decay;
-        next[i] = b + keep * prev[i];
-        if (q)
-            q[i] *= keep;
-    }
-}
-
-int whitecap_foam_loop(const struct whitecap_cover *c, float lambda_t, float dt_s,
-                       float half_life_s, float *opacity, struct swell_err *err)
-{
-    if (!(dt_s > 0.0f) || !(half_life_s > 0.0f) || !isfinite(dt_s) || !isfinite(half_life_s))
-        return swell_fail(err, SWELL_E_ARG,
-                          "foam loop: frame step %g s and half-life %g s must be finite and > 0",
-                          (double)dt_s, (double)half_life_s);
-    float decay = (float)exp2(-(double)dt_s / (double)half_life_s);
-    int F = c->desc.frames;
-    size_t texels = (size_t)c->desc.width * (size_t)c->desc.height;
-    float *last = opacity + (size_t)(F - 1) * texels;
-    float *q = malloc(texels * sizeof *q);
-    if (!q)
-        return swell_fail(err, SWELL_E_NOMEM, "foam loop: cannot allocate %zu floats", texels);
-
-    /* Periodic steady state. Round the loop eq. 8 is affine per texel: from O = x before frame
-     * 0, frame F-1 is P + Q x with Q = prod_f (1 - B_f) a <= a^F < 1. Pass 1 runs from x = 0
-     * (the paper's initial state), giving P and Q; the fixed point x* = P / (1 - Q) is the
-     * frame F-1 value of the periodic state, and pass 2 restarts from it. Where some frame has
-     * B = 1, Q = 0 and x* = P exactly; where B = 0 throughout, P = 0 = x*: those texels close
-     * the loop bit for bit, as eq. 7's two-pass loop did. */
-    for (size_t i = 0; i < texels; i++) {
-        last[i] = 0.0f;
-        q[i] = 1.0f;
-    }
-    for (int pass = 0; pass < 2; pass++) {
-        for (int f = 0; f < F; f++)
-            foam_step(c, f, f ? opacity + (size_t)(f - 1) * texels : last,
-                      opacity + (size_t)f * texels, pass ? NULL : q, lambda_t, decay);
-        if (pass == 0)
-            for (size_t i = 0; i < texels; i++) {
-                double x = q[i] > 0.0f ? (double)last[i] / (1.0 - (double)q[i]) : last[i];
-                last[i] = x < 1.0 ? (float)x : 1.0f;
-            }
-    }
-    free(q);
-    return 0;
-}
-
-double whitecap_measured_fraction(const float *opacity, size_t count)
-{
-    if (count == 0)
+    double t = (x - s->lo) / s->h + 0.5;
+    if (!(t > 0.0))
         return 0.0;
-    double sum = 0.0;
-    for (size_t i = 0; i < count; i++)
-        sum += opacity[i];
-    return sum / (double)count;   /* eq. 9 */
+    if (t >= s->points)
+        return 1.0;
+    int j = (int)t;
+    double below = j ? s->cum[j - 1] : 0.0;
+    return below + (s->cum[j] - below) * (t - j);
+}
+
+double whitecap_sum_quantile(const struct whitecap_sum *s, double p)
+{
+    p = p < 0.0 ? 0.0 : p > 1.0 ? 1.0 : p;
+    int a = 0, b = s->points - 1;   /* the smallest j with cum[j] >= p */
+    while (a < b) {
+        int mid = (a + b) / 2;
+        if (s->cum[mid] >= p)
+            b = mid;
+        else
+            a = mid + 1;
+    }
+    double below = a ? s->cum[a - 1] : 0.0, mass = s->cum[a] - below;
+    double f = mass > 0.0 ? (p - below) / mass : 0.0;
+    return s->lo + (a - 0.5 + f) * s->h;
 }
 
 float whitecap_dupuy_k(float jxx, float jyy, float jxy, int patterns)

@@ -3,9 +3,8 @@
  * lambda_min: the smaller eigenvalue of the horizontal Jacobian J = I + sum_i lambda_i dD_i/dx
  * (Tessendorf 2023 §2). Breaking where lambda_min < lambda_T; lambda_T is chosen from the CDF of
  * lambda_min so that the whitecap fraction equals a wind-speed model (algorithm 1, eq. 11-13).
- * Foam opacity O decays with a half-life (eq. 7-8); over a loop it is brought to its periodic
- * steady state so frame F equals frame 0. The breaking input per texel is the share of its area
- * that breaks (sub-sampled), not a yes/no at its centre, so foam edges are not the texel grid.
+ * swell breaks and keeps foam on Dupuy's k of all patterns combined (whitecap_memory_loop), with
+ * the thresholds of algorithm 1's role: eq. 13's breaking fraction and the model's W.
  */
 #ifndef SWELL_WHITECAP_H
 #define SWELL_WHITECAP_H
@@ -46,59 +45,46 @@ double whitecap_cdf(const float *lambda_min, size_t count, float lambda_t);
 int whitecap_threshold(const float *lambda_min, size_t count, double fraction, float *lambda_t,
                        struct swell_err *err);
 
-/* Sub-texel breaking coverage: the B in [0, 1] that replaces eq. 8's binary
- * Theta(lambda_T - lambda_min) per texel. A texel of a periodic width x height lambda_min table
- * covers the unit square around its centre; between centres lambda_min is bilinear (wrapping at
- * the edges, as the GPU samples the looping table). B(lambda_T) is the share of the texel's
- * sub x sub sub-sample points (the centres of a sub x sub split of the square) where that
- * reconstruction is < lambda_T: a midpoint-rule estimate of the breaking area. sub = 1 is the
- * texel centre alone, i.e. eq. 7's binary test. Each texel keeps its smallest and largest
- * sub-sample, so only texels on a breaking edge recount at a new threshold. */
-#define WHITECAP_SUB_DEFAULT 4
-#define WHITECAP_SUB_MAX 16
+/* Foam that lasts, on the patterns combined (issue 13: foam baked per pattern repeated on
+ * each pattern's tile). Eq. 8 keeps foam where a texel broke recently: O' = max(B, a O) for a
+ * binary B. Its (min, +) analogue keeps, per texel, the lowest breaking measure reached
+ * recently, rising at a fixed rate since: m(t) = min(k(t), m(t - dt) + r dt). m is additive
+ * over independent patterns like Dupuy's k (a sum of per-pattern memories, each looping on its
+ * own tile), so foam = {sum_i m_i < epsilon} is not periodic in any one tile, and prefilters as
+ * k does (its mean and second moment in mipmaps, eq. 7-8). A deeper break (lower k) stays
+ * below epsilon longer; r is solved so that the area this foam covers equals the wind model's
+ * W, while epsilon makes the instantaneous breaking {sum_i k_i < epsilon} the eq. 13 fraction.
+ *
+ * The periodic steady state of m over a loop of `frames` frames: min over n in [0, frames) of
+ * k(f - n) + n step, written to m[frame * texels + i] (k in the same layout; step >= 0, the
+ * rise per frame). SWELL_E_NOMEM. */
+int whitecap_memory_loop(const float *k, size_t texels, int frames, float step, float *m,
+                         struct swell_err *err);
 
-struct whitecap_cover_desc {
-    const float *lambda_min;  /* frames x height x width, row-major per frame; borrowed, must
-                               * outlive the cover and hold no NaN */
-    int width, height;        /* texels, >= 1 */
-    int frames;               /* >= 1 */
-    int sub;                  /* sub-samples per texel side, 1..WHITECAP_SUB_MAX;
-                               * 0 = WHITECAP_SUB_DEFAULT */
+/* The distribution of S = offset + sum_i X_i for independent X_i, each given by its samples
+ * (every sample equally likely): each histogram on one grid (spacing h = the widest sample
+ * range / WHITECAP_SUM_BINS, mass split linearly between the two nearest grid points), the
+ * histograms convolved. P(S < x) is then within the mass of about n grid spacings of the true
+ * empirical one. */
+#define WHITECAP_SUM_BINS 2048
+#define SWELL_WHITECAP_SUM_MAX 4      /* variables (patterns) */
+
+struct whitecap_sum {
+    double lo, h;       /* grid point j is at lo + j h */
+    int points;
+    double *cum;        /* cum[j]: mass at grid points 0..j (cum[points - 1] = 1) */
 };
 
-struct whitecap_cover {
-    struct whitecap_cover_desc desc;   /* defaults resolved */
-    float *range;                      /* per texel of every frame: smallest, largest sub-sample */
-};
-
-/* SWELL_E_ARG for a bad size, sub or a NaN sample (says which), SWELL_E_NOMEM. On failure
- * *out is zeroed. */
-int whitecap_cover_create(const struct whitecap_cover_desc *desc, struct whitecap_cover *out,
-                          struct swell_err *err);
-/* Accepts a zeroed or failed cover. */
-void whitecap_cover_destroy(struct whitecap_cover *c);
-/* B of every texel of one frame at lambda_t into b[height * width]. */
-void whitecap_cover_frame(const struct whitecap_cover *c, int frame, float lambda_t, float *b);
-/* Mean B over every texel of every frame: the sub-sample CDF at lambda_t, i.e. eq. 12's
- * <Theta> for the B the foam loop applies (over all samples: negative lambda_min breaks too). */
-double whitecap_cover_mean(const struct whitecap_cover *c, float lambda_t);
-/* Smallest and largest sub-sample over every texel of every frame. */
-void whitecap_cover_extent(const struct whitecap_cover *c, float *lo, float *hi);
-
-/* Foam opacity for a looping sequence: the cover's F frames spaced dt_s; writes
- * opacity[frame * texels + i] in [0, 1], the periodic steady state of eq. 8 with Theta replaced
- * by the coverage B: O' = B + (1 - B) O exp(-dt/T). Its fixed point over the loop is solved per
- * texel, so one update from frame F-1 gives back frame 0 (exactly where some frame has B = 1 or
- * B = 0 throughout, to float rounding elsewhere). For B in {0, 1} (sub = 1) this is eq. 7.
- * half_life_s is a true half-life (opacity halves in half_life_s without breaking): eq. 7's
- * decay time is T = half_life_s / ln 2, so the per-frame factor is
- * exp(-dt/T) = 2^(-dt_s / half_life_s). (The paper calls T a "half life" but writes exp(-dt/T).)
- * SWELL_E_ARG for a bad dt_s or half-life, SWELL_E_NOMEM. */
-int whitecap_foam_loop(const struct whitecap_cover *c, float lambda_t, float dt_s,
-                       float half_life_s, float *opacity, struct swell_err *err);
-
-/* Measured whitecap fraction (eq. 9): mean opacity over all samples; 0 for count 0. */
-double whitecap_measured_fraction(const float *opacity, size_t count);
+/* SWELL_E_ARG for no variable, an empty one or a NaN / infinite sample (says which),
+ * SWELL_E_NOMEM. On failure *out is zeroed. */
+int whitecap_sum_create(const float *const *samples, const size_t *counts, int n, double offset,
+                        struct whitecap_sum *out, struct swell_err *err);
+void whitecap_sum_destroy(struct whitecap_sum *s);   /* accepts a zeroed one */
+/* P(S < x): each grid point's mass spread evenly over the spacing around it. */
+double whitecap_sum_cdf(const struct whitecap_sum *s, double x);
+/* The x with P(S < x) = p (p clamped to [0, 1]); the inverse of whitecap_sum_cdf where the
+ * mass is not zero. */
+double whitecap_sum_quantile(const struct whitecap_sum *s, double p);
 
 /* Dupuy & Bruneton 2012. Eq. 7: pattern i's share k_i = 1/n + a_i + b_i + a_i b_i - c_i^2 of the
  * Jacobian determinant j (eq. 4), with a_i = jxx, b_i = jyy, c_i = jxy of that pattern and n the

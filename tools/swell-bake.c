@@ -59,7 +59,7 @@ static void usage(FILE *f)
 "\n"
 "Output:\n"
 "  --out DIR         directory for the KTX tables and manifest.swell (written atomically)\n"
-"  --report FILE     write statistics as JSON (hs_m, mss, lambda_t, whitecap fractions, bytes)\n"
+"  --report FILE     write statistics as JSON (hs_m, mss, whitecap threshold and fractions, bytes)\n"
 "  --quiet           no summary, no progress\n"
 "  --help, --version\n");
 }
@@ -241,8 +241,9 @@ static int write_report(const char *path, const struct swell_tables *t, double s
     OUT("  \"mss_resolved\": %.9g,\n  \"mss_unresolved\": %.9g,\n  \"mss_total\": %.9g,\n",
         rx + ry, (double)t->mss_unresolved_x + t->mss_unresolved_y,
         rx + ry + t->mss_unresolved_x + t->mss_unresolved_y);
-    OUT("  \"lambda_t\": %.9g,\n  \"whitecap_epsilon\": %.9g,\n", t->lambda_t,
-        t->whitecap_epsilon);
+    OUT("  \"whitecap_epsilon\": %.9g,\n  \"whitecap_breaking_fraction\": %.9g,\n"
+        "  \"foam_recovery_per_s\": %.9g,\n", t->whitecap_epsilon,
+        t->whitecap_breaking_fraction, t->foam_recovery_per_s);
     OUT("  \"whitecap_model\": \"%s\",\n", whitecap_model_name(t->state.whitecap_model));
     OUT("  \"whitecap_fraction_model\": %.9g,\n  \"whitecap_fraction_measured\": %.9g,\n",
         t->whitecap_fraction_model, t->whitecap_fraction_measured);
@@ -290,7 +291,9 @@ static void print_summary(const struct swell_tables *t, const char *dir, double 
     printf("), %d frames over %.1f s, tables %dx%d / geometry %dx%d\n", t->frames,
            t->loop_period_s, t->state.size_fs, t->state.size_fs, t->state.size_geo,
            t->state.size_geo);
-    printf("  whitecaps: lambda_T %.4f, fraction %.5f measured vs %.5f %s\n", t->lambda_t,
+    printf("  whitecaps: epsilon %.4f on the summed k (breaking %.5f), foam recovers %.3g k/s; "
+           "foam fraction %.5f vs %.5f %s\n", t->whitecap_epsilon,
+           t->whitecap_breaking_fraction, t->foam_recovery_per_s,
            t->whitecap_fraction_measured, t->whitecap_fraction_model,
            whitecap_model_name(t->state.whitecap_model));
     printf("  GPU bytes %llu (tables %llu + resident %llu) of budget %llu\n",

@@ -27,7 +27,7 @@ check "inspect lists tables" grep -q slope_p0 "$T/inspect.txt"
 check "rebake" "$B" --wind 12 --size 32 --frames 8 --out "$T/b" --quiet
 check "byte-identical" cmp -s "$T/a/manifest.swell" "$T/b/manifest.swell"
 check "byte-identical tables" sh -c "for f in '$T'/a/*; do cmp -s \"\$f\" '$T/b/'\$(basename \"\$f\") || exit 1; done"
-for key in wind_speed_mps hs_m mss_x mss_y mss_resolved mss_total lambda_t \
+for key in wind_speed_mps hs_m mss_x mss_y mss_resolved mss_total whitecap_epsilon foam_recovery_per_s \
            whitecap_fraction_model whitecap_fraction_measured bytes_gpu tables; do
     check "report has $key" grep -q "\"$key\"" "$T/a.json"
 done

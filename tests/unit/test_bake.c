@@ -1,11 +1,12 @@
-/* The bake as a whole: determinism, the budget, whitecap fraction vs the wind model, and the
- * decision (bake.c, top comment) to give each pattern its own lambda_min and foam map with one
- * shared threshold - checked here against the full multi-pattern Jacobian on a common grid. */
+/* The bake as a whole: determinism, the budget, the whitecap fractions drawn from the tables vs
+ * the wind model, and the decision (bake.c, top comment) to break and keep foam on the patterns'
+ * summed Dupuy k - checked here against the full multi-pattern Jacobian at common points. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
 #include <cmocka.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,7 +41,8 @@ static void test_deterministic(void **state)
         assert_memory_equal(a.table[i].data, b.table[i].data, table_bytes(&a.table[i]));
         assert_memory_equal(a.table[i].scale, b.table[i].scale, sizeof a.table[i].scale);
     }
-    assert_true(a.lambda_t == b.lambda_t);
+    assert_true(a.whitecap_epsilon == b.whitecap_epsilon);
+    assert_true(a.foam_recovery_per_s == b.foam_recovery_per_s);
     /* a different seed gives different waves */
     s.seed = 99;
     struct swell_tables c;
@@ -81,25 +83,79 @@ static void test_budget(void **state)
     assert_int_equal(t.count, 0);
 }
 
+static const struct swell_table *find_table(const struct swell_tables *t, const char *name)
+{
+    for (int i = 0; i < t->count; i++)
+        if (strcmp(t->table[i].name, name) == 0)
+            return &t->table[i];
+    return NULL;
+}
+
+/* Whether pattern i's whitecap table varies (carries whitecaps) or holds the constant 1/n. */
+static int table_varies(const struct swell_table *wt)
+{
+    size_t n = (size_t)wt->width * wt->height * wt->layers;
+    for (size_t i = 1; i < n; i++)
+        if (wt->data[i * 4] != wt->data[0])
+            return 1;
+    return 0;
+}
+
+/* The whitecap fractions drawn from the baked, quantised tables as the renderer reads them: at
+ * random texels and frames chosen independently per pattern (the patterns' bands are disjoint),
+ * the summed channel 0 (foam memory m_i) below epsilon must cover the wind model's W, and the
+ * summed channel 3 (k_i) eq. 13's <Theta> - an estimate independent of the bake's histograms. */
 static void test_whitecap_fraction_vs_model(void **state)
 {
     (void)state;
-    /* The threshold is solved for the model fraction (Tessendorf alg. 1); the measured fraction
-     * (eq. 9, mean foam opacity after the loop reaches steady state) must land near it. The
-     * steady-state relation eq. 11 assumes breaking uncorrelated between frames, which the
-     * looping waves are not, so we allow 35% relative error. */
     float winds[] = { 8, 12, 16, 22 };
-    for (int i = 0; i < 4; i++) {
-        struct seastate s = small_state(winds[i]);
+    for (int w = 0; w < 4; w++) {
+        struct seastate s = small_state(winds[w]);
         struct swell_tables t;
         struct swell_err err = { 0 };
         assert_int_equal(swell_bake(&s, NULL, &t, &err), 0);
-        double model = whitecap_model_fraction(WHITECAP_MOM80, winds[i]);
+        double model = whitecap_model_fraction(WHITECAP_MOM80, winds[w]);
         assert_true(fabs(t.whitecap_fraction_model - model) < 1e-6);
-        double rel = fabs(t.whitecap_fraction_measured - model) / model;
-        if (rel > 0.35)
-            fail_msg("U=%g: measured %g vs model %g (%.0f%%)", winds[i],
-                     t.whitecap_fraction_measured, model, rel * 100);
+        const struct swell_table *wt[SWELL_MAX_PATTERNS];
+        int breaking = 0;
+        for (int i = 0; i < t.patterns; i++) {
+            char name[32];
+            snprintf(name, sizeof name, "whitecap_p%d", i);
+            wt[i] = find_table(&t, name);
+            assert_non_null(wt[i]);
+            breaking += table_varies(wt[i]);
+        }
+        assert_true(breaking >= 1);
+        size_t texels = (size_t)t.state.size_fs * t.state.size_fs, n = 400000;
+        size_t foam = 0, brk = 0;
+        uint64_t rng = 777 + (uint64_t)w;
+        for (size_t p = 0; p < n; p++) {
+            double m = 0.0, k = 0.0;
+            for (int i = 0; i < t.patterns; i++) {
+                rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+                size_t at = (size_t)((rng >> 20) % (texels * (size_t)t.frames));
+                const uint8_t *px = wt[i]->data + at * 4;   /* level 0 of every frame first */
+                m += quantize_decode(wt[i], 0, px[0]);
+                k += quantize_decode(wt[i], 3, px[3]);
+            }
+            foam += m < t.whitecap_epsilon;
+            brk += k < t.whitecap_epsilon;
+        }
+        double wf = (double)foam / n, wb = (double)brk / n;
+        print_message("U=%g: %d breaking patterns, foam %.5f vs W %.5f, breaking %.5f vs "
+                      "<Theta> %.5f, recovery %.3g k/s\n", winds[w], breaking, wf, model, wb,
+                      (double)t.whitecap_breaking_fraction, (double)t.foam_recovery_per_s);
+        /* sampling error sqrt(W / n) < 2 % of W above W = 0.006; quantisation adds a little */
+        if (fabs(wf - model) > 0.06 * model)
+            fail_msg("U=%g: foam covers %g of the drawn tables, the model %g", winds[w], wf,
+                     model);
+        double theta = whitecap_breaking_fraction(model, exp2(-(t.pattern[0].period_s /
+                                                                t.frames) /
+                                                               t.state.foam_half_life_s));
+        assert_true(fabs(t.whitecap_breaking_fraction - theta) < 1e-6 * theta + 1e-9);
+        if (fabs(wb - theta) > 0.08 * theta + 3.0 / sqrt((double)n) * sqrt(theta))
+            fail_msg("U=%g: breaking covers %g, eq. 13 says %g", winds[w], wb, theta);
+        assert_true(t.whitecap_breaking_fraction < t.whitecap_fraction_model);
         tables_destroy(&t);
     }
 }
@@ -119,7 +175,13 @@ static float sample(const float *f, int n, float L, double x, double y)
                    (f[j1 * n + i0] * (1 - fu) + f[j1 * n + i1] * fu) * fv);
 }
 
-static void test_pattern_union_holds_up(void **state)
+/* The breaking the renderer draws, {sum of the breaking patterns' k_i (Dupuy eq. 7) + the
+ * others' 1/n < epsilon}, at common points of the sea where every pattern is sampled with its
+ * own period, against the breaking of the full multi-pattern Jacobian J = I + sum J_i at the
+ * same fraction: its determinant (what eq. 7's k_i approximate, without the cross terms) and
+ * Tessendorf's lambda_min. The masks must overlap far beyond chance; they cannot match exactly,
+ * as eq. 7 leaves out the cross terms between patterns. */
+static void test_pattern_sum_holds_up(void **state)
 {
     (void)state;
     struct seastate s = small_state(18);
@@ -130,10 +192,14 @@ static void test_pattern_union_holds_up(void **state)
     struct ocean *oc[SWELL_MAX_PATTERNS] = { 0 };
     struct ocean_fields fl[SWELL_MAX_PATTERNS];
     float *copy[SWELL_MAX_PATTERNS][3];
+    int brk_pattern[SWELL_MAX_PATTERNS];
     for (int i = 0; i < np; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "whitecap_p%d", i);
+        brk_pattern[i] = table_varies(find_table(&t, name));
         struct ocean_desc od = { .state = &t.state, .n = n, .size_m = t.pattern[i].size_m,
                                  .k_min = t.pattern[i].k_min, .k_max = t.pattern[i].k_max,
-                                 .frames = t.frames, .period_s = t.loop_period_s,
+                                 .frames = t.frames, .period_s = t.pattern[i].period_s,
                                  .lambda = t.pattern[i].lambda,
                                  .seed = t.state.seed + 0x9e3779b9u * (uint32_t)(i + 1) };
         assert_int_equal(ocean_create(&od, &oc[i], &err), 0);
@@ -144,180 +210,111 @@ static void test_pattern_union_holds_up(void **state)
             memcpy(copy[i][c], src, sizeof(float) * n * n);
         }
     }
-    /* common sample points: random positions over the largest pattern's period, where every
-     * pattern is sampled (bilinearly, each wrapped with its own period) */
+    /* random positions over the largest pattern's period, 8 of them apart by its size (other
+     * patterns then see other phases: the sum does not repeat with any one tile) */
     size_t cnt = 150000;
-    float *full = malloc(cnt * sizeof(float));
-    unsigned char *uni = malloc(cnt);
-    size_t per[SWELL_MAX_PATTERNS] = { 0 };
+    float *full = malloc(cnt * sizeof(float)), *det = malloc(cnt * sizeof(float));
+    unsigned char *ours = malloc(cnt);
     uint64_t rng = 12345;
+    size_t n_ours = 0;
     for (size_t p = 0; p < cnt; p++) {
         double pos[2];
         for (int c = 0; c < 2; c++) {
             rng = rng * 6364136223846793005ull + 1442695040888963407ull;
-            pos[c] = (double)(rng >> 11) / 9007199254740992.0 * t.pattern[0].size_m;
+            pos[c] = (double)(rng >> 11) / 9007199254740992.0 * 8.0 * t.pattern[0].size_m;
         }
         float a = 0, b = 0, c = 0;
-        int any = 0;
+        double k = 0.0;
         for (int i = 0; i < np; i++) {
             float L = t.pattern[i].size_m;
             float ai = sample(copy[i][0], n, L, pos[0], pos[1]);
             float bi = sample(copy[i][1], n, L, pos[0], pos[1]);
             float ci = sample(copy[i][2], n, L, pos[0], pos[1]);
             a += ai; b += bi; c += ci;
-            int brk = whitecap_lambda_min(ai, bi, ci) < t.lambda_t;
-            per[i] += (size_t)brk;
-            any |= brk;
+            k += brk_pattern[i] ? whitecap_dupuy_k(ai, bi, ci, np) : 1.0 / np;
         }
         full[p] = whitecap_lambda_min(a, b, c);
-        uni[p] = (unsigned char)any;
+        det[p] = (1.0f + a) * (1.0f + b) - c * c;   /* the j that Dupuy's k_i sum to (eq. 4) */
+        ours[p] = k < t.whitecap_epsilon;
+        n_ours += ours[p];
     }
-    for (int i = 0; i < np; i++)
-        print_message("pattern %d (L %.1f m) breaks at %.4f of the points\n", i,
-                      t.pattern[i].size_m, (double)per[i] / cnt);
-    size_t n_uni = 0;
-    for (size_t i = 0; i < cnt; i++)
-        n_uni += uni[i];
-    double p = (double)n_uni / cnt;
-    assert_true(n_uni > 50);
-    /* threshold the full Jacobian's lambda_min for the same fraction, then compare masks */
-    float thr;
-    assert_int_equal(whitecap_threshold(full, cnt, p, &thr, &err), 0);
-    size_t both = 0, either = 0;
-    for (size_t i = 0; i < cnt; i++) {
-        int f = full[i] < thr;
-        both += (size_t)(f && uni[i]);
-        either += (size_t)(f || uni[i]);
+    double p = (double)n_ours / cnt;
+    assert_true(n_ours > 50);
+    /* threshold each full-Jacobian measure for the same fraction, then compare masks */
+    double chance = p * p / (2 * p - p * p), iou[2];
+    for (int q = 0; q < 2; q++) {
+        const float *ref = q ? full : det;
+        float thr;
+        assert_int_equal(whitecap_threshold(ref, cnt, p, &thr, &err), 0);
+        size_t both = 0, either = 0;
+        for (size_t i = 0; i < cnt; i++) {
+            int f = ref[i] < thr;
+            both += (size_t)(f && ours[i]);
+            either += (size_t)(f || ours[i]);
+        }
+        iou[q] = (double)both / (double)either;
     }
-    double iou = (double)both / (double)either;
-    double chance = p * p / (2 * p - p * p);
-    print_message("union breaking fraction %.4f, IoU with full-Jacobian breaking %.3f "
-                  "(independent masks would give %.4f)\n", p, iou, chance);
-    if (iou < 0.3 || iou < 5 * chance)
-        fail_msg("per-pattern whitecaps do not match the full Jacobian: IoU %.3f", iou);
+    print_message("summed-k breaking fraction %.4f (eq. 13: %.4f); IoU with the breaking of the "
+                  "full Jacobian's determinant %.3f, of its lambda_min %.3f (independent masks "
+                  "would give %.4f)\n", p, (double)t.whitecap_breaking_fraction, iou[0], iou[1],
+                  chance);
+    /* measured: 0.32 and 0.20 (35x chance) - eq. 7 drops the cross terms a_i b_j - c_i c_j */
+    if (iou[0] < 0.25 || iou[1] < 20 * chance)
+        fail_msg("summed-k whitecaps do not match the full Jacobian: IoU %.3f (det), %.3f "
+                 "(lambda_min)", iou[0], iou[1]);
     for (int i = 0; i < np; i++) {
         for (int c = 0; c < 3; c++)
             free(copy[i][c]);
         ocean_destroy(oc[i]);
     }
     free(full);
-    free(uni);
+    free(det);
+    free(ours);
     tables_destroy(&t);
 }
 
-/* Bilinear reconstruction of a periodic n x n texel table at texel coordinates (u, v), texel
- * (x, y)'s centre at (x, y): how the GPU magnifies the foam, and how the bake reconstructs
- * lambda_min between centres. */
-static double texel_bilinear(const float *f, int n, double u, double v)
-{
-    double fu = floor(u), fv = floor(v), tu = u - fu, tv = v - fv;
-    int x0 = (((int)fu % n) + n) % n, y0 = (((int)fv % n) + n) % n;
-    int x1 = (x0 + 1) % n, y1 = (y0 + 1) % n;
-    return (1 - tv) * ((1 - tu) * f[y0 * n + x0] + tu * f[y0 * n + x1]) +
-           tv * ((1 - tu) * f[y1 * n + x0] + tu * f[y1 * n + x1]);
-}
-
-/* The baked foam of the largest pattern comes from sub-texel coverage: its opacity channel is
- * the 4 x 4 foam loop rebuilt here from the pattern's own fields, not eq. 7's binary one, and by
- * two blockiness measures it is less blocky than the binary loop at the same threshold:
- * (a) breaking-edge texels (a 16 x 16 reference says part of their area breaks now) holding an
- * opacity of exactly 0 or 1; (b) the area misclassified by the 0.5 contour of the breaking
- * input B magnified bilinearly, as the GPU draws it, against the breaking region itself
- * (lambda_min < lambda_T on an 8 x 8 grid per texel) - a binary B draws texel-grid diamonds. */
-static void test_foam_subtexel_baked(void **state)
+/* The baked channels are what the manifest says: channel 0 of every breaking pattern is the
+ * foam memory of its channel 3 (k_i) at the recorded recovery rate, to the quantisation step,
+ * and the foam outlasts the break (memory below k somewhere, never above). */
+static void test_foam_memory_baked(void **state)
 {
     (void)state;
     struct seastate s = small_state(18);
     struct swell_tables t;
     struct swell_err err = { 0 };
     assert_int_equal(swell_bake(&s, NULL, &t, &err), 0);
-    int n = t.state.size_fs, F = t.frames;
-    size_t texels = (size_t)n * n, count = texels * F;
-    struct ocean_desc od = { .state = &t.state, .n = n, .size_m = t.pattern[0].size_m,
-                             .k_min = t.pattern[0].k_min, .k_max = t.pattern[0].k_max,
-                             .frames = F, .period_s = t.pattern[0].period_s,
-                             .lambda = t.pattern[0].lambda,
-                             .seed = t.state.seed + 0x9e3779b9u };
-    struct ocean *oc;
-    assert_int_equal(ocean_create(&od, &oc, &err), 0);
-    float *lm = malloc(count * sizeof *lm), *op4 = malloc(count * sizeof *op4);
-    float *op1 = malloc(count * sizeof *op1), *b4 = malloc(texels * sizeof *b4);
-    float *b1 = malloc(texels * sizeof *b1);
-    assert_true(lm && op4 && op1 && b4 && b1);
-    for (int f = 0; f < F; f++) {
-        struct ocean_fields fl;
-        assert_int_equal(ocean_eval(oc, f, &fl, &err), 0);
-        for (size_t i = 0; i < texels; i++)
-            lm[(size_t)f * texels + i] = whitecap_lambda_min(fl.jxx[i], fl.jyy[i], fl.jxy[i]);
+    size_t texels = (size_t)t.state.size_fs * t.state.size_fs, count = texels * t.frames;
+    float *k = malloc(count * sizeof *k), *m = malloc(count * sizeof *m);
+    assert_true(k && m);
+    int checked = 0;
+    for (int i = 0; i < t.patterns; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "whitecap_p%d", i);
+        const struct swell_table *wt = find_table(&t, name);
+        if (!table_varies(wt))
+            continue;
+        for (size_t j = 0; j < count; j++)
+            k[j] = quantize_decode(wt, 3, wt->data[j * 4 + 3]);
+        float step = t.foam_recovery_per_s * t.pattern[i].period_s / t.frames;
+        assert_int_equal(whitecap_memory_loop(k, texels, t.frames, step, m, &err), 0);
+        float tol = wt->scale[0] / 255.0f + wt->scale[3] / 255.0f + 1e-5f;
+        size_t lower = 0;
+        for (size_t j = 0; j < count; j++) {
+            float baked = quantize_decode(wt, 0, wt->data[j * 4]);
+            if (fabsf(baked - m[j]) > tol)
+                fail_msg("pattern %d texel %zu: baked memory %g, from its k %g", i, j,
+                         (double)baked, (double)m[j]);
+            assert_true(baked <= k[j] + tol);
+            lower += baked < k[j] - 4 * tol;
+        }
+        print_message("pattern %d: memory below k at %.3f of texels and frames\n", i,
+                      (double)lower / count);
+        assert_true(lower > count / 100);
+        checked++;
     }
-    ocean_destroy(oc);
-    struct whitecap_cover c4, c1;
-    struct whitecap_cover_desc d = { .lambda_min = lm, .width = n, .height = n, .frames = F };
-    assert_int_equal(whitecap_cover_create(&d, &c4, &err), 0);
-    d.sub = 1;
-    assert_int_equal(whitecap_cover_create(&d, &c1, &err), 0);
-    float lt = t.lambda_t, dt = t.pattern[0].period_s / F;
-    assert_int_equal(whitecap_foam_loop(&c4, lt, dt, t.state.foam_half_life_s, op4, &err), 0);
-    assert_int_equal(whitecap_foam_loop(&c1, lt, dt, t.state.foam_half_life_s, op1, &err), 0);
-
-    const struct swell_table *wt = NULL;
-    for (int i = 0; i < t.count; i++)
-        if (strcmp(t.table[i].name, "whitecap_p0") == 0)
-            wt = &t.table[i];
-    assert_non_null(wt);
-    float tol = wt->scale[2] / 510.0f + 1e-6f;
-    size_t off1 = 0;
-    for (size_t i = 0; i < count; i++) {
-        float baked = quantize_decode(wt, 2, wt->data[i * 4 + 2]);   /* level 0 first */
-        if (fabsf(baked - op4[i]) > tol)
-            fail_msg("texel %zu: baked opacity %g, 4 x 4 foam loop %g", i, baked, op4[i]);
-        off1 += fabsf(baked - op1[i]) > tol;
-    }
-
-    size_t edge = 0, hard4 = 0, hard1 = 0, fine_pts = 0, miss4 = 0, miss1 = 0;
-    for (int f = 0; f < F; f++) {
-        const float *l = lm + (size_t)f * texels;
-        whitecap_cover_frame(&c4, f, lt, b4);
-        whitecap_cover_frame(&c1, f, lt, b1);
-        for (int y = 0; y < n; y++)
-            for (int x = 0; x < n; x++) {
-                int below = 0;
-                for (int j = 0; j < 16; j++)
-                    for (int i = 0; i < 16; i++)
-                        below += texel_bilinear(l, n, x - 0.5 + (i + 0.5) / 16,
-                                                y - 0.5 + (j + 0.5) / 16) < lt;
-                if (below == 0 || below == 256)
-                    continue;
-                size_t k = (size_t)f * texels + (size_t)y * n + x;
-                edge++;
-                hard4 += op4[k] == 0.0f || op4[k] == 1.0f;
-                hard1 += op1[k] == 0.0f || op1[k] == 1.0f;
-                for (int j = 0; j < 8; j++)
-                    for (int i = 0; i < 8; i++) {
-                        double u = x - 0.5 + (i + 0.5) / 8, v = y - 0.5 + (j + 0.5) / 8;
-                        int brk = texel_bilinear(l, n, u, v) < lt;
-                        fine_pts++;
-                        miss4 += (texel_bilinear(b4, n, u, v) >= 0.5) != brk;
-                        miss1 += (texel_bilinear(b1, n, u, v) >= 0.5) != brk;
-                    }
-            }
-    }
-    print_message("pattern 0, %zu breaking-edge texels over %d frames: opacity exactly 0 or 1 "
-                  "%.3f (binary) -> %.3f (4x4); 0.5-contour misclassifies %.3f -> %.3f of their "
-                  "area; %zu of %zu baked texels differ from the binary loop\n",
-                  edge, F, (double)hard1 / edge, (double)hard4 / edge,
-                  (double)miss1 / fine_pts, (double)miss4 / fine_pts, off1, count);
-    assert_true(edge > 100);
-    assert_true(off1 > edge / 4);
-    assert_true(hard4 * 3 < hard1);
-    assert_true(miss4 * 3 < miss1 * 2);
-    whitecap_cover_destroy(&c4);
-    whitecap_cover_destroy(&c1);
-    free(lm);
-    free(op4);
-    free(op1);
-    free(b4);
-    free(b1);
+    assert_true(checked >= 1);
+    free(k);
+    free(m);
     tables_destroy(&t);
 }
 
@@ -327,8 +324,8 @@ int main(void)
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_budget),
         cmocka_unit_test(test_whitecap_fraction_vs_model),
-        cmocka_unit_test(test_pattern_union_holds_up),
-        cmocka_unit_test(test_foam_subtexel_baked),
+        cmocka_unit_test(test_pattern_sum_holds_up),
+        cmocka_unit_test(test_foam_memory_baked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

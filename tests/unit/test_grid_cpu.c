@@ -270,7 +270,6 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                 assert_true(fabs(vx[GRID_A_SVAR] - fmax(m[2] - m[0] * m[0], 0.0)) <= 1e-3 * st->scale[2] / 255.0 + 1e-5);
                 assert_true(fabs(vx[GRID_A_K] - q[0]) <= tol_w + 1e-6);
                 assert_true(fabs(vx[GRID_A_K + 1] - fmax(q[1] - q[0] * q[0], 0.0)) <= 0.02 * wt->scale[1] / 255.0 + 1e-5);
-                assert_true(fabs(vx[GRID_A_FOAM] - fmin(fmax(q[2], 0.0), 1.0)) <= 0.01 * wt->scale[2] / 255.0 + 1e-6);
             }
     }
     /* the view covers displaced near vertices and fully filtered far ones */

@@ -68,7 +68,8 @@ static void make_set(struct swell_tables *s)
     s->mss_unresolved_x = 1.0f / 300.0f;
     s->mss_unresolved_y = 2.0f / 700.0f;
     s->hs_m = 2.345678f;
-    s->lambda_t = -0.123456789f;
+    s->foam_recovery_per_s = 0.0123456789f;
+    s->whitecap_breaking_fraction = 0.00234f;
     s->whitecap_fraction_model = 0.0123f;
     s->whitecap_fraction_measured = 0.0119f;
     s->whitecap_epsilon = 0.3333333f;
@@ -169,7 +170,8 @@ static void test_roundtrip(void **st)
     assert_true(a.mss_unresolved_x == b.mss_unresolved_x);
     assert_true(a.mss_unresolved_y == b.mss_unresolved_y);
     assert_true(a.hs_m == b.hs_m);
-    assert_true(a.lambda_t == b.lambda_t);
+    assert_true(a.foam_recovery_per_s == b.foam_recovery_per_s);
+    assert_true(a.whitecap_breaking_fraction == b.whitecap_breaking_fraction);
     assert_true(a.whitecap_fraction_model == b.whitecap_fraction_model);
     assert_true(a.whitecap_fraction_measured == b.whitecap_fraction_measured);
     assert_true(a.whitecap_epsilon == b.whitecap_epsilon);
@@ -191,7 +193,7 @@ static void test_roundtrip(void **st)
     }
     uint8_t *m = NULL;
     slurp("rt", "manifest.swell", &m);
-    assert_memory_equal(m, "swell-manifest 3\n", 17);
+    assert_memory_equal(m, "swell-manifest 4\n", 17);
     free(m);
     tables_destroy(&a);
     tables_destroy(&b);

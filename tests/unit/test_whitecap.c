@@ -235,471 +235,131 @@ static void test_threshold_edges_and_errors(void **state)
     assert_int_equal(whitecap_threshold(pos, 0, 0.1, &lt, &err), SWELL_E_ARG);
 }
 
-/* ---- foam loop (eq. 7-8) ---------------------------------------------------------------- */
+/* ---- foam memory (the (min, +) form of eq. 8) ----------------------------------------------- */
 
-/* A point-sampled cover (sub = 1: eq. 7's binary Theta at each texel) of texels unrelated to
- * their neighbours, laid out as one row. */
-static struct whitecap_cover point_cover(const float *lm, int F, size_t texels)
+/* Steady state by its definition: min over n in [0, F) of k(f - n) + n step, around the loop. */
+static void test_memory_loop_vs_definition(void **state)
 {
-    struct whitecap_cover c;
-    struct whitecap_cover_desc d = { .lambda_min = lm, .width = (int)texels, .height = 1,
-                                     .frames = F, .sub = 1 };
-    struct swell_err err = { 0 };
-    assert_int_equal(whitecap_cover_create(&d, &c, &err), 0);
-    return c;
-}
-
-static int foam_loop_points(const float *lm, int F, size_t texels, float lt, float dt, float half,
-                            float *op, struct swell_err *err)
-{
-    struct whitecap_cover c = point_cover(lm, F, texels);
-    int r = whitecap_foam_loop(&c, lt, dt, half, op, err);
-    whitecap_cover_destroy(&c);
-    return r;
-}
-
-/* Eq. 8 written out with Theta -> b (b = 0/1 is eq. 8 itself), run from O = 0 round the loop
- * until it stops changing. */
-static void ref_foam_brute_b(const double *b, int F, size_t texels, double a, double *o)
-{
-    double *cur = calloc(texels, sizeof *cur);
-    assert_non_null(cur);
-    for (int loop = 0; loop < 400; loop++)
+    (void)state;
+    enum { T = 37, F = 11 };
+    struct rng r = { 21 };
+    float k[F * T], m[F * T];
+    for (int i = 0; i < F * T; i++)
+        k[i] = (float)(0.8 + 0.2 * rng_gauss(&r));
+    const float steps[] = { 0.0f, 0.013f, 0.2f, 5.0f };
+    for (int s = 0; s < 4; s++) {
+        struct swell_err err = { 0 };
+        assert_int_equal(whitecap_memory_loop(k, T, F, steps[s], m, &err), 0);
         for (int f = 0; f < F; f++)
-            for (size_t i = 0; i < texels; i++) {
-                double th = b[(size_t)f * texels + i];
-                cur[i] = cur[i] * a + th * (1.0 - cur[i] * a);
-                o[(size_t)f * texels + i] = cur[i];
+            for (int i = 0; i < T; i++) {
+                double ref = INFINITY;
+                for (int n = 0; n < F; n++)
+                    ref = fmin(ref, k[((f - n + F) % F) * T + i] + n * (double)steps[s]);
+                if (fabs(m[f * T + i] - ref) > 1e-5)
+                    fail_msg("step %g frame %d texel %d: %g, definition %g", (double)steps[s],
+                             f, i, (double)m[f * T + i], ref);
+                /* it loops: one more update from frame F-1 gives frame 0 */
+                float next = fminf(k[i], m[(F - 1) * T + i] + steps[s]);
+                assert_true(fabsf(next - m[i]) < 1e-5f);
+                assert_true(m[f * T + i] <= k[f * T + i]);
             }
-    free(cur);
-}
-
-static void ref_foam_brute(const float *lm, int F, size_t texels, float lt, double a, double *o)
-{
-    double *b = malloc((size_t)F * texels * sizeof *b);
-    assert_non_null(b);
-    for (size_t i = 0; i < (size_t)F * texels; i++)
-        b[i] = lm[i] < lt ? 1.0 : 0.0;
-    ref_foam_brute_b(b, F, texels, a, o);
-    free(b);
-}
-
-static void test_foam_steady_state(void **state)
-{
-    (void)state;
-    const int F = 16;
-    const size_t texels = 600;
-    const float dt = 0.25f, half = 2.0f, lt = 0.35f;
-    float *lm = malloc((size_t)F * texels * sizeof *lm);
-    float *op = malloc((size_t)F * texels * sizeof *op);
-    double *ref = malloc((size_t)F * texels * sizeof *ref);
-    assert_true(lm && op && ref);
-    struct rng r = { 7 };
-    for (size_t i = 0; i < (size_t)F * texels; i++)
-        lm[i] = (float)(0.7 + 0.15 * rng_gauss(&r));   /* ~1% breaking, many texels never */
-    struct swell_err err = { 0 };
-    assert_int_equal(foam_loop_points(lm, F, texels, lt, dt, half, op, &err), 0);
-    double a = pow(0.5, dt / half);
-    ref_foam_brute(lm, F, texels, lt, a, ref);
-    size_t never = 0;
-    for (size_t i = 0; i < texels; i++) {
-        /* seamless: one more eq. 7 step from frame F-1 reproduces frame 0 bit for bit */
-        float next = lm[i] < lt ? 1.0f : op[(size_t)(F - 1) * texels + i] * (float)a;
-        assert_true(next == op[i]);
-        int broke = 0;
-        for (int f = 0; f < F; f++) {
-            size_t k = (size_t)f * texels + i;
-            assert_true(op[k] >= 0.0f && op[k] <= 1.0f);
-            assert_true(fabs(op[k] - ref[k]) < 1e-5);
-            broke |= lm[k] < lt;
-        }
-        never += !broke;
     }
-    assert_true(never > 0 && never < texels);   /* both kinds of texel were exercised */
-    free(lm);
-    free(op);
-    free(ref);
 }
 
-static void test_foam_impulse_half_life(void **state)
+/* A single break to k = 0.4 at frame 3 stays below 0.725 for (0.725 - 0.4) / 0.05 frames. */
+static void test_memory_single_break(void **state)
 {
     (void)state;
-    /* one texel breaks at frame 0 only: O(t) = 2^(-t / half-life); halves after one half-life */
-    const int F = 40;
-    const float dt = 0.1f, half = 1.0f;
-    float lm[40], op[40];
-    for (int f = 0; f < F; f++)
-        lm[f] = 0.9f;
-    lm[0] = 0.1f;
+    enum { F = 64 };
+    float k[F], m[F];
     struct swell_err err = { 0 };
-    assert_int_equal(foam_loop_points(lm, F, 1, 0.5f, dt, half, op, &err), 0);
-    assert_true(op[0] == 1.0f);
-    assert_true(fabsf(op[10] - 0.5f) < 1e-5f);    /* t = 1 s = one half-life */
-    assert_true(fabsf(op[20] - 0.25f) < 1e-5f);
     for (int f = 0; f < F; f++)
-        assert_true(fabs(op[f] - exp2(-f * 0.1)) < 1e-5);
-    /* never breaking: zero; always breaking: one */
-    for (int f = 0; f < F; f++)
-        lm[f] = 0.9f;
-    assert_int_equal(foam_loop_points(lm, F, 1, 0.5f, dt, half, op, &err), 0);
-    for (int f = 0; f < F; f++)
-        assert_true(op[f] == 0.0f);
-    assert_int_equal(foam_loop_points(lm, F, 1, 1.0f, dt, half, op, &err), 0);
-    for (int f = 0; f < F; f++)
-        assert_true(op[f] == 1.0f);
-    /* a one-frame loop */
-    assert_int_equal(foam_loop_points(lm, 1, 1, 1.0f, dt, half, op, &err), 0);
-    assert_true(op[0] == 1.0f);
-    /* bad arguments */
-    struct whitecap_cover c = point_cover(lm, F, 1);
-    assert_int_equal(whitecap_foam_loop(&c, 0.5f, 0.0f, half, op, &err), SWELL_E_ARG);
-    assert_int_equal(whitecap_foam_loop(&c, 0.5f, dt, -1.0f, op, &err), SWELL_E_ARG);
-    assert_int_equal(whitecap_foam_loop(&c, 0.5f, dt, NAN, op, &err), SWELL_E_ARG);
-    whitecap_cover_destroy(&c);
-    struct whitecap_cover_desc d = { .lambda_min = lm, .width = 1, .height = 1, .frames = 0 };
-    assert_int_equal(whitecap_cover_create(&d, &c, &err), SWELL_E_ARG);
-    d.frames = F;
-    d.sub = WHITECAP_SUB_MAX + 1;
-    assert_int_equal(whitecap_cover_create(&d, &c, &err), SWELL_E_ARG);
-    d.sub = -1;
-    assert_int_equal(whitecap_cover_create(&d, &c, &err), SWELL_E_ARG);
-    d.sub = 0;
-    lm[7] = NAN;
-    assert_int_equal(whitecap_cover_create(&d, &c, &err), SWELL_E_ARG);
-    assert_non_null(strstr(err.msg, "frame 7"));
-    assert_null(c.range);
-    whitecap_cover_destroy(&c);   /* a failed cover */
-}
-
-/* With independent breaking events of probability p per frame, O(t) is independent of the next
- * Theta, so eq. 10's factorisation is exact and eq. 11 gives the mean opacity with the
- * per-frame alpha. The loop's measured fraction (eq. 9) must match it. */
-static void test_foam_fraction_matches_eq11(void **state)
-{
-    (void)state;
-    const int F = 64;
-    const size_t texels = 8000;
-    const float dt = 0.1f, half = 0.5f;
-    const double p = 0.05;
-    float *lm = malloc((size_t)F * texels * sizeof *lm);
-    float *op = malloc((size_t)F * texels * sizeof *op);
-    assert_true(lm && op);
-    struct rng r = { 99 };
-    for (size_t i = 0; i < (size_t)F * texels; i++)
-        lm[i] = (float)rng_uniform(&r);
-    struct swell_err err = { 0 };
-    assert_int_equal(foam_loop_points(lm, F, texels, (float)p, dt, half, op, &err), 0);
-    double a = exp2(-dt / half);
-    double expect = p / (1.0 - a * (1.0 - p));
-    double got = whitecap_measured_fraction(op, (size_t)F * texels);
-    assert_true(fabs(got - expect) < 0.01 * expect + 2e-3);
-    free(lm);
-    free(op);
-}
-
-/* ---- sub-texel coverage ------------------------------------------------------------------ */
-
-/* Bilinear reconstruction between texel centres of a periodic w x h table at texel coordinates
- * (u, v) (texel (x, y)'s centre at (x, y)): written out directly, no shared code. */
-static double ref_bilinear(const float *lm, int w, int h, double u, double v)
-{
-    double fu = floor(u), fv = floor(v);
-    double tu = u - fu, tv = v - fv;
-    int x0 = (((int)fu % w) + w) % w, y0 = (((int)fv % h) + h) % h;
-    int x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
-    return (1 - tv) * ((1 - tu) * lm[y0 * w + x0] + tu * lm[y0 * w + x1]) +
-           tv * ((1 - tu) * lm[y1 * w + x0] + tu * lm[y1 * w + x1]);
-}
-
-/* Share of texel (x, y)'s unit square below lt on an m x m midpoint grid. */
-static double ref_coverage(const float *lm, int w, int h, int x, int y, double lt, int m)
-{
+        k[f] = 1.0f;
+    k[3] = 0.4f;
+    assert_int_equal(whitecap_memory_loop(k, 1, F, 0.05f, m, &err), 0);
     int below = 0;
-    for (int j = 0; j < m; j++)
-        for (int i = 0; i < m; i++)
-            below += ref_bilinear(lm, w, h, x - 0.5 + (i + 0.5) / m, y - 0.5 + (j + 0.5) / m) < lt;
-    return (double)below / (double)(m * m);
-}
-
-static struct whitecap_cover make_cover(const float *lm, int w, int h, int F, int sub)
-{
-    struct whitecap_cover c;
-    struct whitecap_cover_desc d = { .lambda_min = lm, .width = w, .height = h, .frames = F,
-                                     .sub = sub };
-    struct swell_err err = { 0 };
-    assert_int_equal(whitecap_cover_create(&d, &c, &err), 0);
-    return c;
-}
-
-/* One breaking texel in a flat field: the bilinear reconstruction is a pyramid, breaking where
- * (1 - |x|)(1 - |y|) > c = (0.9 - lt) / 0.4. Its area, 4 ((1 - c) + c ln c), is shared out
- * over the texel and its neighbours, falling off with distance; eq. 7's binary test puts it
- * all on one texel. The dip sits at the corner so its neighbours wrap round the table. */
-static void test_cover_single_texel(void **state)
-{
-    (void)state;
-    enum { N = 8 };
-    float lm[N * N];
-    for (int i = 0; i < N * N; i++)
-        lm[i] = 0.9f;
-    lm[0] = 0.5f;
-    struct whitecap_cover c4 = make_cover(lm, N, N, 1, 0), c1 = make_cover(lm, N, N, 1, 1);
-    assert_int_equal(c4.desc.sub, WHITECAP_SUB_DEFAULT);
-    float b[N * N], b1[N * N];
-    /* lt = 0.85 (c = 1/8): 4 x 4 midpoints give centre 1, edge neighbours 4/16, corners 1/16 */
-    whitecap_cover_frame(&c4, 0, 0.85f, b);
-    whitecap_cover_frame(&c1, 0, 0.85f, b1);
-    assert_true(b[0] == 1.0f);
-    int edge[4] = { 1, N - 1, N, (N - 1) * N }, corner[4] = { N + 1, N + N - 1,
-                    (N - 1) * N + 1, N * N - 1 };
-    for (int k = 0; k < 4; k++) {
-        assert_true(b[edge[k]] == 0.25f);
-        assert_true(b[corner[k]] == 1.0f / 16.0f);
-        assert_true(b1[edge[k]] == 0.0f && b1[corner[k]] == 0.0f);
-    }
-    double sum = 0.0, sum1 = 0.0;
-    for (int i = 0; i < N * N; i++) {
-        sum += b[i];
-        sum1 += b1[i];
-        int x = i % N, y = i / N;
-        int dx = x < N - x ? x : N - x, dy = y < N - y ? y : N - y;
-        if (dx > 1 || dy > 1)
-            assert_true(b[i] == 0.0f);
-        /* against a 64 x 64 midpoint reference of the same bilinear field */
-        assert_true(fabs(b[i] - ref_coverage(lm, N, N, x, y, 0.85, 64)) <= 0.125);
-    }
-    assert_true(sum1 == 1.0);
-    /* the total is the pyramid's breaking area, for thresholds across its range */
-    for (float lt = 0.55f; lt < 0.9f; lt += 0.05f) {
-        double cc = (0.9 - lt) / 0.4, area = 4.0 * ((1.0 - cc) + cc * log(cc));
-        whitecap_cover_frame(&c4, 0, lt, b);
-        sum = 0.0;
-        for (int i = 0; i < N * N; i++) {
-            sum += b[i];
-            assert_true(b[i] >= 0.0f && b[i] <= b[0]);   /* highest at the dip */
-        }
-        /* the 4 x 4 midpoint rule's own error on this pyramid is up to 0.14 + 0.09 area */
-        if (fabs(sum - area) > 0.15 + 0.1 * area)
-            fail_msg("lt %.2f: coverage sums to %.4f, the pyramid's area is %.4f", lt, sum, area);
-        assert_true(fabs(whitecap_cover_mean(&c4, lt) - sum / (N * N)) < 1e-12);
-    }
-    float lo, hi;
-    whitecap_cover_extent(&c4, &lo, &hi);
-    assert_true(fabsf(lo - (0.9f - 0.4f * 49.0f / 64.0f)) < 1e-6f && hi == 0.9f);   /* (1/8, 1/8) */
-    whitecap_cover_destroy(&c4);
-    whitecap_cover_destroy(&c1);
-}
-
-/* A smooth random periodic field (a few Fourier modes): every texel's B equals the share of its
- * own 4 x 4 midpoints below lt (independent bilinear reference; 1/16 allowed for a sample on the
- * threshold rounding the other way) and stays within 0.1 of a 32 x 32 reference on average
- * better than the binary test does. */
-static void fill_smooth(float *lm, int w, int h, int F, struct rng *r, double amp)
-{
-    enum { MODES = 6 };
-    double kx[MODES], ky[MODES], ph[MODES], om[MODES], am[MODES];
-    for (int m = 0; m < MODES; m++) {
-        kx[m] = 2 * M_PI * (1 + (int)(rng_uniform(r) * 4)) / w;
-        ky[m] = 2 * M_PI * ((int)(rng_uniform(r) * 7) - 3) / h;
-        ph[m] = 2 * M_PI * rng_uniform(r);
-        om[m] = 2 * M_PI * (1 + (int)(rng_uniform(r) * 2)) / F;
-        am[m] = amp * (0.5 + rng_uniform(r)) / MODES;
-    }
     for (int f = 0; f < F; f++)
-        for (int y = 0; y < h; y++)
-            for (int x = 0; x < w; x++) {
-                double v = 0.8;
-                for (int m = 0; m < MODES; m++)
-                    v += am[m] * cos(kx[m] * x + ky[m] * y - om[m] * f + ph[m]);
-                lm[((size_t)f * h + y) * w + x] = (float)v;
-            }
+        below += m[f] < 0.725f;
+    assert_int_equal(below, 7);   /* 0.4, 0.45, ..., 0.7: frames 3..9 */
+    assert_true(fabsf(m[10] - 0.75f) < 1e-6f);
+    assert_true(m[20] == 1.0f);
+    assert_true(m[2] == 1.0f);
 }
 
-static void test_cover_vs_reference(void **state)
+/* ---- distribution of a sum of independent patterns -------------------------------------- */
+
+static double ref_norm_cdf(double x)
 {
-    (void)state;
-    enum { W = 32, H = 16 };
-    float lm[W * H];
-    struct rng r = { 31 };
-    fill_smooth(lm, W, H, 1, &r, 0.6);
-    struct whitecap_cover c4 = make_cover(lm, W, H, 1, 4), c1 = make_cover(lm, W, H, 1, 1);
-    float b[W * H], b1[W * H];
-    const float lt = 0.6f;
-    whitecap_cover_frame(&c4, 0, lt, b);
-    whitecap_cover_frame(&c1, 0, lt, b1);
-    double err4 = 0.0, err1 = 0.0;
-    size_t partial = 0, edge = 0;
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            float v = b[y * W + x];
-            assert_true(fabs(v - ref_coverage(lm, W, H, x, y, lt, 4)) <= 1.0 / 16.0 + 1e-9);
-            double fine = ref_coverage(lm, W, H, x, y, lt, 32);
-            if (fine > 0.0 && fine < 1.0) {
-                edge++;
-                err4 += fabs(v - fine);
-                err1 += fabs(b1[y * W + x] - fine);
-                partial += v > 0.0f && v < 1.0f;
-            }
-        }
-    print_message("%zu edge texels: %zu partial; mean |B - area|: 4x4 %.4f, binary %.4f\n",
-                  edge, partial, err4 / edge, err1 / edge);
-    assert_true(edge > 20);
-    assert_true(partial > edge / 2);
-    assert_true(err4 / edge < 0.1 && err4 < 0.3 * err1);
-    whitecap_cover_destroy(&c4);
-    whitecap_cover_destroy(&c1);
+    return 0.5 * erfc(-x / sqrt(2.0));
 }
 
-/* Eq. 8 with fractional B: the loop against eq. 8 brute-forced to its steady state with the
- * same B, seamless, in [0, 1]. A long half-life keeps a^F near 1, so texels that only ever see
- * partial coverage remember their start: a fixed-count restart from O = 0 would not close. */
-static void test_foam_fractional_steady_state(void **state)
+static void test_sum_of_uniforms_and_gaussians(void **state)
 {
     (void)state;
-    enum { W = 32, H = 32, F = 8 };
-    const size_t texels = W * H;
-    const float dt = 0.1f, half = 2.0f, lt = 0.55f;
-    float *lm = malloc(F * texels * sizeof *lm), *bf = malloc(F * texels * sizeof *bf);
-    float *op = malloc(F * texels * sizeof *op);
-    double *b = malloc(F * texels * sizeof *b), *ref = malloc(F * texels * sizeof *ref);
-    assert_true(lm && bf && op && b && ref);
-    struct rng r = { 5 };
-    fill_smooth(lm, W, H, F, &r, 0.6);
-    struct whitecap_cover c = make_cover(lm, W, H, F, 0);
-    for (int f = 0; f < F; f++)
-        whitecap_cover_frame(&c, f, lt, bf + (size_t)f * texels);
-    for (size_t i = 0; i < F * texels; i++)
-        b[i] = bf[i];
+    enum { N = 40000 };
+    float *a = malloc(N * sizeof *a), *b = malloc(N * sizeof *b);
+    assert_true(a && b);
     struct swell_err err = { 0 };
-    assert_int_equal(whitecap_foam_loop(&c, lt, dt, half, op, &err), 0);
-    double a = exp2(-dt / half);
-    ref_foam_brute_b(b, F, texels, a, ref);
-    size_t only_partial = 0;
-    for (size_t i = 0; i < texels; i++) {
-        double next = b[i] + (1.0 - b[i]) * a * op[(F - 1) * texels + i];
-        assert_true(fabs(next - op[i]) < 1e-6);
-        int full = 0, part = 0;
-        for (int f = 0; f < F; f++) {
-            size_t k = (size_t)f * texels + i;
-            assert_true(op[k] >= 0.0f && op[k] <= 1.0f);
-            if (fabs(op[k] - ref[k]) > 1e-5)
-                fail_msg("texel %zu frame %d: %.7f, eq. 8 gives %.7f", i, f, op[k], ref[k]);
-            full |= b[k] == 1.0;
-            part |= b[k] > 0.0 && b[k] < 1.0;
-        }
-        only_partial += part && !full;
+    struct whitecap_sum s;
+    /* U(0, 1) + U(0, 2) + 0.5, samples at the cell centres: the trapezoid distribution */
+    for (int i = 0; i < N; i++) {
+        a[i] = (float)((i + 0.5) / N);
+        b[i] = (float)(2.0 * ((i * 7919 % N) + 0.5) / N);
     }
-    assert_true(only_partial > 20);
-    free(lm);
-    free(bf);
-    free(op);
+    const float *smp[2] = { a, b };
+    size_t cnt[2] = { N, N };
+    assert_int_equal(whitecap_sum_create(smp, cnt, 2, 0.5, &s, &err), 0);
+    for (double x = 0.3; x < 3.8; x += 0.137) {
+        double y = x - 0.5, ref;   /* P(U1 + U2 < y), U1 ~ U(0,1), U2 ~ U(0,2) */
+        if (y <= 0.0)
+            ref = 0.0;
+        else if (y <= 1.0)
+            ref = y * y / 4.0;
+        else if (y <= 2.0)
+            ref = (y - 0.5) / 2.0;
+        else if (y <= 3.0)
+            ref = 1.0 - (3.0 - y) * (3.0 - y) / 4.0;
+        else
+            ref = 1.0;
+        double got = whitecap_sum_cdf(&s, x);
+        if (fabs(got - ref) > 2e-3)
+            fail_msg("uniform sum: P(S < %g) = %g, exact %g", x, got, ref);
+        if (ref > 0.01 && ref < 0.99)
+            assert_true(fabs(whitecap_sum_quantile(&s, ref) - x) < 4e-3);
+    }
+    assert_true(whitecap_sum_cdf(&s, 0.4) == 0.0);
+    assert_true(whitecap_sum_cdf(&s, 3.6) == 1.0);
+    whitecap_sum_destroy(&s);
+
+    /* N(0, 1) + N(1, 4): N(1, 5), tails included (the whitecap fractions are tails) */
+    struct rng r = { 99 };
+    for (int i = 0; i < N; i++) {
+        a[i] = (float)rng_gauss(&r);
+        b[i] = (float)(1.0 + 2.0 * rng_gauss(&r));
+    }
+    assert_int_equal(whitecap_sum_create(smp, cnt, 2, 0.0, &s, &err), 0);
+    for (double z = -3.0; z <= 3.0; z += 0.25) {
+        double x = 1.0 + sqrt(5.0) * z, ref = ref_norm_cdf(z), got = whitecap_sum_cdf(&s, x);
+        /* sampling error of N draws: about sqrt(p (1 - p) / N) <= 0.0025 */
+        if (fabs(got - ref) > 0.008 + 0.2 * ref)
+            fail_msg("gaussian sum: P(S < %g) = %g, exact %g", x, got, ref);
+    }
+    double q = whitecap_sum_quantile(&s, 0.01);
+    assert_true(fabs(whitecap_sum_cdf(&s, q) - 0.01) < 1e-9);
+    whitecap_sum_destroy(&s);
+
+    /* errors: no variable, an empty one, a NaN */
+    assert_int_equal(whitecap_sum_create(smp, cnt, 0, 0.0, &s, &err), SWELL_E_ARG);
+    size_t none[2] = { N, 0 };
+    assert_int_equal(whitecap_sum_create(smp, none, 2, 0.0, &s, &err), SWELL_E_ARG);
+    assert_non_null(strstr(err.msg, "variable 1"));
+    b[17] = NAN;
+    assert_int_equal(whitecap_sum_create(smp, cnt, 2, 0.0, &s, &err), SWELL_E_ARG);
+    assert_non_null(strstr(err.msg, "sample 17"));
+    assert_null(s.cum);
+    whitecap_sum_destroy(&s);
+    free(a);
     free(b);
-    free(ref);
-    whitecap_cover_destroy(&c);
-}
-
-/* Eq. 10-11 with B for Theta: B at frame t is independent of the opacity before it, so the
- * measured fraction (eq. 9) is <B> / (1 - a (1 - <B>)) with <B> the sub-sample CDF
- * (whitecap_cover_mean) - not the texel-centre CDF, which the bilinear reconstruction narrows:
- * here the two predictions differ by more than half, so the threshold must come from the
- * sub-samples. */
-static void test_cover_eq11(void **state)
-{
-    (void)state;
-    enum { W = 64, H = 64, F = 48 };
-    const size_t texels = W * H, count = F * texels;
-    const float dt = 0.1f, half = 0.5f, lt = 0.08f;
-    float *lm = malloc(count * sizeof *lm), *op = malloc(count * sizeof *op);
-    assert_true(lm && op);
-    struct rng r = { 77 };
-    for (size_t i = 0; i < count; i++)
-        lm[i] = (float)rng_uniform(&r);   /* independent texels and frames */
-    struct whitecap_cover c = make_cover(lm, W, H, F, 0);
-    struct swell_err err = { 0 };
-    assert_int_equal(whitecap_foam_loop(&c, lt, dt, half, op, &err), 0);
-    double a = exp2(-dt / half);
-    double theta_sub = whitecap_cover_mean(&c, lt), theta_pt = whitecap_cdf(lm, count, lt);
-    double w_sub = whitecap_ensemble_fraction(theta_sub, a);
-    double w_pt = whitecap_ensemble_fraction(theta_pt, a);
-    double got = whitecap_measured_fraction(op, count);
-    print_message("eq. 9 %.5f; eq. 11 from sub-samples %.5f, from texel centres %.5f\n", got,
-                  w_sub, w_pt);
-    assert_true(fabs(got - w_sub) < 0.03 * w_sub);
-    assert_true(fabs(got - w_pt) > 0.5 * got);
-    free(lm);
-    free(op);
-    whitecap_cover_destroy(&c);
-}
-
-/* A breaking front crossing the table: the foam's edge texels (some but not all of their area
- * breaking now) hold partial opacity instead of eq. 7's exact 1 / exact decayed values, and
- * the binary test's share of opacities that are exactly 0 or 1 there drops. */
-static void test_foam_edges_soften(void **state)
-{
-    (void)state;
-    enum { W = 32, H = 32, F = 16 };
-    const size_t texels = W * H;
-    float *lm = malloc(F * texels * sizeof *lm), *op4 = malloc(F * texels * sizeof *op4);
-    float *op1 = malloc(F * texels * sizeof *op1);
-    assert_true(lm && op4 && op1);
-    struct rng r = { 11 };
-    fill_smooth(lm, W, H, F, &r, 0.6);
-    struct whitecap_cover c4 = make_cover(lm, W, H, F, 0), c1 = make_cover(lm, W, H, F, 1);
-    struct swell_err err = { 0 };
-    const float lt = 0.5f;
-    assert_int_equal(whitecap_foam_loop(&c4, lt, 0.1f, 0.4f, op4, &err), 0);
-    assert_int_equal(whitecap_foam_loop(&c1, lt, 0.1f, 0.4f, op1, &err), 0);
-    size_t edge = 0, hard4 = 0, hard1 = 0;
-    for (int f = 0; f < F; f++)
-        for (size_t i = 0; i < texels; i++) {
-            double fine = ref_coverage(lm + (size_t)f * texels, W, H, (int)(i % W),
-                                       (int)(i / W), lt, 16);
-            if (fine <= 0.0 || fine >= 1.0)
-                continue;
-            float v4 = op4[(size_t)f * texels + i], v1 = op1[(size_t)f * texels + i];
-            edge++;
-            hard4 += v4 == 0.0f || v4 == 1.0f;
-            hard1 += v1 == 0.0f || v1 == 1.0f;
-        }
-    print_message("%zu breaking-edge texels: exactly 0 or 1 %.3f (binary) -> %.3f (4x4)\n",
-                  edge, (double)hard1 / edge, (double)hard4 / edge);
-    assert_true(edge > 100);
-    assert_true(hard1 > edge / 3);
-    assert_true(hard4 * 4 < hard1);
-    /* eq. 9 on the same threshold barely moves: the coverage redistributes the foam */
-    double w4 = whitecap_measured_fraction(op4, F * texels);
-    double w1 = whitecap_measured_fraction(op1, F * texels);
-    assert_true(fabs(w4 - w1) < 0.25 * w1);
-    free(lm);
-    free(op4);
-    free(op1);
-    whitecap_cover_destroy(&c4);
-    whitecap_cover_destroy(&c1);
-}
-
-static void test_measured_fraction(void **state)
-{
-    (void)state;
-    /* 64 x 64: 16 rows full foam, 16 rows half opacity, the rest clear: 1/4 + 1/8 */
-    float *o = calloc(64 * 64, sizeof *o);
-    assert_non_null(o);
-    for (int y = 0; y < 32; y++)
-        for (int x = 0; x < 64; x++)
-            o[y * 64 + x] = y < 16 ? 1.0f : 0.5f;
-    assert_true(whitecap_measured_fraction(o, 64 * 64) == 0.375);
-    /* a disc of radius 20 texels: coverage counted independently from its equation */
-    size_t inside = 0;
-    for (int y = 0; y < 64; y++)
-        for (int x = 0; x < 64; x++) {
-            int in = (x - 31.5) * (x - 31.5) + (y - 31.5) * (y - 31.5) < 400.0;
-            o[y * 64 + x] = in ? 1.0f : 0.0f;
-            inside += (size_t)in;
-        }
-    double w = whitecap_measured_fraction(o, 64 * 64);
-    assert_true(w == (double)inside / 4096.0);
-    assert_true(fabs(w - M_PI * 400.0 / 4096.0) < 0.01);
-    assert_true(whitecap_measured_fraction(o, 0) == 0.0);
-    free(o);
 }
 
 /* ---- Dupuy & Bruneton 2012 -------------------------------------------------------------- */
@@ -744,15 +404,9 @@ int main(void)
         cmocka_unit_test(test_eq11_eq13),
         cmocka_unit_test(test_threshold_gaussian),
         cmocka_unit_test(test_threshold_edges_and_errors),
-        cmocka_unit_test(test_foam_steady_state),
-        cmocka_unit_test(test_foam_impulse_half_life),
-        cmocka_unit_test(test_foam_fraction_matches_eq11),
-        cmocka_unit_test(test_cover_single_texel),
-        cmocka_unit_test(test_cover_vs_reference),
-        cmocka_unit_test(test_foam_fractional_steady_state),
-        cmocka_unit_test(test_cover_eq11),
-        cmocka_unit_test(test_foam_edges_soften),
-        cmocka_unit_test(test_measured_fraction),
+        cmocka_unit_test(test_memory_loop_vs_definition),
+        cmocka_unit_test(test_memory_single_break),
+        cmocka_unit_test(test_sum_of_uniforms_and_gaussians),
         cmocka_unit_test(test_dupuy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
