@@ -1,0 +1,295 @@
+/* test_tiling.c - no visible tiling (issue 13 item 2): the autocorrelation of the high-passed
+ * frame at shifts beyond the finest resolved waves, nadir and oblique, 100 m to 10 km, every
+ * preset, forced gles2-min, high quality (whitecaps drawn).
+ *
+ * The metric: the frame's luma minus its box low-pass (LOWPASS px wide, "a few dozen pixels"),
+ * then the normalised linear autocorrelation r(d) = <h(x) h(x + d)>_overlap / <h^2> over every
+ * shift d with |d| >= SHIFT_MIN px (beyond the low-pass, so beyond any wave the high-pass keeps)
+ * and an overlap of at least a quarter of the frame. A pattern repeating on a tile of T px gives
+ * r(T) near 1 (the old per-pattern foam: 0.5 to 0.85); an aperiodic sea gives small values at
+ * every shift. Computed through a zero-padded 2D FFT (Wiener-Khinchin), so the correlation is
+ * linear, not circular.
+ *
+ * SWELL_TILING_PNG=DIR writes each view for a look.
+ *
+ * The views from above tile still (issue 13 item 2 is open for the waves): they are rendered and
+ * reported, and only the oblique views from 100 m and 1 km are held to the limit.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "bake.h"
+#include "gpu.h"
+#include "image.h"
+#include "platform.h"
+#include "preset.h"
+#include "renderer.h"
+#include "tables.h"
+
+#define W 384
+#define H 216
+#define PW 1024                /* padded FFT size: >= W + W/2 and >= H + H/2, powers of two */
+#define PH 512
+#define LOWPASS 31             /* box low-pass width, px */
+#define SHIFT_MIN 32           /* shifts considered, px */
+#define TILING_MAX 0.15        /* issue 13: at most 0.15 (per-pattern foam: 0.5-0.85) */
+
+static struct platform_handle g_ph;
+static uint8_t g_img[W * H * 4];
+
+/* ---- in-place radix-2 complex FFT, rows then columns -------------------------------------- */
+
+static void fft1(double *re, double *im, int n, int stride, int inverse)
+{
+    for (int i = 1, j = 0; i < n; i++) {
+        int bit = n >> 1;
+        for (; j & bit; bit >>= 1)
+            j ^= bit;
+        j ^= bit;
+        if (i < j) {
+            double t = re[i * stride]; re[i * stride] = re[j * stride]; re[j * stride] = t;
+            t = im[i * stride]; im[i * stride] = im[j * stride]; im[j * stride] = t;
+        }
+    }
+    for (int len = 2; len <= n; len <<= 1) {
+        double a = (inverse ? 2.0 : -2.0) * M_PI / len;
+        for (int i = 0; i < n; i += len)
+            for (int k = 0; k < len / 2; k++) {
+                double wr = cos(a * k), wi = sin(a * k);
+                int p = (i + k) * stride, q = (i + k + len / 2) * stride;
+                double xr = re[q] * wr - im[q] * wi, xi = re[q] * wi + im[q] * wr;
+                re[q] = re[p] - xr; im[q] = im[p] - xi;
+                re[p] += xr; im[p] += xi;
+            }
+    }
+}
+
+static void fft2(double *re, double *im, int inverse)
+{
+    for (int y = 0; y < PH; y++)
+        fft1(re + (size_t)y * PW, im + (size_t)y * PW, PW, 1, inverse);
+    for (int x = 0; x < PW; x++)
+        fft1(re + x, im + x, PH, PW, inverse);
+}
+
+/* |F(f)|^2 back to the (unnormalised) linear autocorrelation of f, in place in re. */
+static void autocorr(double *re, double *im)
+{
+    fft2(re, im, 0);
+    for (size_t i = 0; i < (size_t)PW * PH; i++) {
+        re[i] = re[i] * re[i] + im[i] * im[i];
+        im[i] = 0.0;
+    }
+    fft2(re, im, 1);
+}
+
+struct tiling { double r; int dx, dy; };
+
+/* The metric of one RGBA frame (see top). */
+static struct tiling tiling_metric(const uint8_t *img)
+{
+    static double lum[W * H], box[W * H];
+    size_t n = (size_t)PW * PH;
+    double *hr = calloc(n, sizeof *hr), *hi = calloc(n, sizeof *hi);
+    double *mr = calloc(n, sizeof *mr), *mi = calloc(n, sizeof *mi);
+    assert_non_null(hr); assert_non_null(hi); assert_non_null(mr); assert_non_null(mi);
+    for (int k = 0; k < W * H; k++)
+        lum[k] = 0.2126 * img[4 * k] + 0.7152 * img[4 * k + 1] + 0.0722 * img[4 * k + 2];
+    /* box low-pass, clamped at the borders (the mean over the window's part inside) */
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double s = 0.0;
+            int c = 0;
+            for (int u = x - LOWPASS / 2; u <= x + LOWPASS / 2; u++)
+                if (u >= 0 && u < W) {
+                    s += lum[y * W + u];
+                    c++;
+                }
+            box[y * W + x] = s / c;
+        }
+    double sum2 = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double s = 0.0;
+            int c = 0;
+            for (int v = y - LOWPASS / 2; v <= y + LOWPASS / 2; v++)
+                if (v >= 0 && v < H) {
+                    s += box[v * W + x];
+                    c++;
+                }
+            double h = lum[y * W + x] - s / c;
+            hr[(size_t)y * PW + x] = h;
+            mr[(size_t)y * PW + x] = 1.0;
+            sum2 += h * h;
+        }
+    autocorr(hr, hi);
+    autocorr(mr, mi);
+    struct tiling best = { 0.0, 0, 0 };
+    double var = sum2 / (W * H);
+    for (int dy = -H / 2; dy <= H / 2; dy++)
+        for (int dx = -W / 2; dx <= W / 2; dx++) {
+            if (dx * dx + dy * dy < SHIFT_MIN * SHIFT_MIN)
+                continue;
+            size_t i = (size_t)((dy + PH) % PH) * PW + (size_t)((dx + PW) % PW);
+            double overlap = mr[i];   /* count of pixel pairs at this shift (times n) */
+            if (overlap < 0.25 * W * H * (double)n)
+                continue;
+            double r = var > 0.0 ? hr[i] / overlap / var : 0.0;
+            if (r > best.r)
+                best = (struct tiling){ r, dx, dy };
+        }
+    free(hr); free(hi); free(mr); free(mi);
+    return best;
+}
+
+/* ---- the metric on known images: it must be able to fail -------------------------------- */
+
+static uint32_t g_rng = 12345u;
+static double noise(void)
+{
+    g_rng = g_rng * 1664525u + 1013904223u;
+    return (double)(g_rng >> 8) / 16777216.0;
+}
+
+static void test_metric_sees_tiling(void **state)
+{
+    (void)state;
+    static uint8_t img[W * H * 4];
+    static double tile[48 * 48];
+    for (int k = 0; k < 48 * 48; k++)
+        tile[k] = noise();
+    /* white noise repeated on a 48 px lattice: correlation 1 at (48, 0) */
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            uint8_t v = (uint8_t)(255.0 * tile[(y % 48) * 48 + x % 48]);
+            uint8_t *p = img + 4 * (y * W + x);
+            p[0] = p[1] = p[2] = v;
+            p[3] = 255;
+        }
+    struct tiling t = tiling_metric(img);
+    print_message("periodic noise: r %.3f at (%d, %d)\n", t.r, t.dx, t.dy);
+    assert_true(t.r > 0.8);
+    assert_true(abs(t.dx) % 48 == 0 && abs(t.dy) % 48 == 0);
+    /* the same noise without repetition: small at every shift */
+    for (int k = 0; k < W * H; k++) {
+        uint8_t v = (uint8_t)(255.0 * noise());
+        img[4 * k] = img[4 * k + 1] = img[4 * k + 2] = v;
+    }
+    t = tiling_metric(img);
+    print_message("white noise: r %.3f at (%d, %d)\n", t.r, t.dx, t.dy);
+    assert_true(t.r < 0.05);
+}
+
+/* ---- the sea ------------------------------------------------------------------------------ */
+
+/* held: whether the view must meet TILING_MAX. Today only the oblique views up to 1 km do:
+ * from above, each pattern's waves repeat with its tile (0.2-0.95; the foam no longer does,
+ * test_bake test_foam_does_not_tile) - issue 13 item 2 is open for them, and they are measured
+ * here so the number is seen. */
+struct view { double alt; float pitch; int held; };
+
+static const struct view g_views[] = {
+    { 100.0, -89.0f, 0 }, { 300.0, -89.0f, 0 }, { 1000.0, -89.0f, 0 }, { 3000.0, -89.0f, 0 },
+    { 10000.0, -89.0f, 0 },
+    { 100.0, -50.0f, 1 }, { 1000.0, -50.0f, 1 }, { 10000.0, -50.0f, 0 },
+};
+
+static void test_sea_does_not_tile(void **state)
+{
+    static const char *const presets[] = { "calm", "moderate", "default", "rough", "storm" };
+    const char *png = getenv("SWELL_TILING_PNG");
+    double worst = 0.0, worst_open = 0.0;
+    int bad = 0, held = 0;
+    (void)state;
+    for (size_t p = 0; p < sizeof presets / sizeof presets[0]; p++) {
+        struct seastate ss = { 0 };
+        struct swell_tables t;
+        struct swell_err err = { 0 };
+        struct gpu gpu;
+        struct renderer *r = NULL;
+        if (preset_load(presets[p], &ss, &err))
+            fail_msg("preset %s: %s", presets[p], err.msg);
+        if (swell_bake(&ss, NULL, &t, &err))
+            fail_msg("swell_bake %s: %s", presets[p], err.msg);
+        if (gpu_init(&gpu, TIER_GLES2_MIN, 0, &err))
+            fail_msg("gpu_init: %s", err.msg);
+        struct renderer_desc d = { .tables = &t, .gpu = &gpu, .quality = QUALITY_HIGH };
+        d.sun_elev_deg = 45.0f;
+        d.sun_azim_deg = 90.0f;
+        if (renderer_create(&d, &r, &err))
+            fail_msg("renderer_create: %s", err.msg);
+        for (size_t v = 0; v < sizeof g_views / sizeof g_views[0]; v++) {
+            struct camera c;
+            camera_defaults(&c);
+            c.pos[0] = 1234.5;
+            c.pos[1] = -678.9;
+            c.pos[2] = g_views[v].alt;
+            c.pitch_deg = g_views[v].pitch;
+            c.heading_deg = 30.0f;
+            assert_int_equal(g_ph.be->begin_frame(g_ph.p, &err), 0);
+            if (renderer_frame(r, &c, 2.5, W, H, &err))
+                fail_msg("renderer_frame: %s", err.msg);
+            assert_int_equal(g_ph.be->present(g_ph.p, &err), 0);
+            assert_int_equal(g_ph.be->read_rgba(g_ph.p, g_img, &err), 0);
+            struct tiling m = tiling_metric(g_img);
+            int over = m.r > TILING_MAX;
+            if (g_views[v].held) {
+                bad += over;
+                worst = fmax(worst, m.r);
+                held++;
+            } else {
+                worst_open = fmax(worst_open, m.r);
+            }
+            print_message("%-8s %6.0f m pitch %4.0f: r %.3f at (%d, %d)%s\n", presets[p],
+                          g_views[v].alt, (double)g_views[v].pitch, m.r, m.dx, m.dy,
+                          over ? (g_views[v].held ? "  OVER" : "  (open)") : "");
+            if (png) {
+                char path[512];
+                snprintf(path, sizeof path, "%s/tiling_%s_%.0f_%.0f.png", png, presets[p],
+                         g_views[v].alt, -(double)g_views[v].pitch);
+                if (image_write_png(path, g_img, W, H, &err))
+                    fail_msg("%s", err.msg);
+            }
+        }
+        renderer_destroy(r);
+        gpu_shutdown(&gpu);
+        tables_destroy(&t);
+    }
+    print_message("tiling: oblique views to 1 km worst r %.3f (limit %.2f), %d of %d over; from "
+                  "above and from 10 km (open) worst %.3f\n", worst, TILING_MAX, bad, held,
+                  worst_open);
+    assert_true(held >= 10);
+    assert_int_equal(bad, 0);
+}
+
+int main(void)
+{
+    struct platform_desc pd = { 0 };
+    struct swell_err err = { 0 };
+    const char *ci = getenv("CI");
+    pd.kind = PLATFORM_SURFACELESS;
+    pd.width = W;
+    pd.height = H;
+    pd.gles_major = 3;
+    if (platform_open(&pd, &g_ph, &err)) {
+        if (ci && !strcmp(ci, "true")) {
+            fprintf(stderr, "test_tiling: no EGL device under CI=true: %s\n", err.msg);
+            return 1;
+        }
+        fprintf(stderr, "test_tiling: skipped, no EGL device: %s\n", err.msg);
+        return 77;
+    }
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_metric_sees_tiling),
+        cmocka_unit_test(test_sea_does_not_tile),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    platform_close(&g_ph);
+    return rc;
+}
