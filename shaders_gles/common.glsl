@@ -2,7 +2,8 @@
 // directions are unit vectors, radiances are relative to the extraterrestrial sun (E0 = 1).
 
 #define PI 3.14159265
-#define EARTH_DROP_K 7.848e-8       // 1 / (2 R), R = 6371 km (camera.h EARTH_RADIUS_M), 1/m
+#define EARTH_R 6.371e6             // camera.h EARTH_RADIUS_M, m
+#define EARTH_R2 4.0589641e13       // its square, m^2
 
 // Stereographic sky-map coordinates of a direction (Bruneton 2010 §5.2): zenith at the centre,
 // horizon on the inscribed circle. Directions below the horizon use the horizon.

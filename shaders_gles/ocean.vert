@@ -210,14 +210,18 @@ void main()
 #if VTF_PATTERNS > 3
     disp += displacement(disp_a3, disp_b3, 3, a_rest, foot);
 #endif
-    vec3 a_pos = vec3(a_rest + disp.xy, disp.z - grid_frame.z - dot(a_rest, a_rest) * EARTH_DROP_K);
+    // the sphere's drop R - sqrt(R^2 - r^2), in its exact-near-the-camera form (grid.c)
+    float r2 = dot(a_rest, a_rest);
+    vec3 a_pos = vec3(a_rest + disp.xy,
+                      disp.z - grid_frame.z - r2 / (EARTH_R + sqrt(max(EARTH_R2 - r2, 0.0))));
     vec4 a_geo_slope = vec4(0.0);   // no CPU patterns on these tiers
     vec2 a_geo_k = vec2(0.0);
 #endif
     vec3 v = normalize(-a_pos);
-    // the sphere's own slope at the rest point (its drop r^2 / (2 R) differentiated) tilts
+    // the sphere's own slope at the rest point (its drop R - sqrt(R^2 - r^2) differentiated) tilts
     // every distant normal towards the camera's vertical
-    vec2 s0 = a_geo_slope.xy + lin_s0.xy - a_rest * (2.0 * EARTH_DROP_K);
+    vec2 s0 = a_geo_slope.xy + lin_s0.xy -
+              a_rest * inversesqrt(max(EARTH_R2 - dot(a_rest, a_rest), 1.0));
     float h = lin_s0.z;
     v_lin = lookups(v, s0);
     v_lin_dx = (lookups(v, s0 + vec2(h, 0.0)) - lookups(v, s0 - vec2(h, 0.0))) / (2.0 * h);

@@ -1,7 +1,6 @@
 // sky.vert - the background sky as a coarse screen mesh (renderer.c): each vertex's view ray in
-// camera-relative world space, mapped to the stereographic sky map (Bruneton 2010 §5.2) here,
-// so the fragment stage is one fetch (the map is smooth: linear interpolation of its
-// coordinates across a cell of the mesh is invisible). With SUN_DISC: the quad of the sun.
+// camera-relative world space (sky.frag shades it per pixel: the limb seen from orbit is a
+// thin band). With SUN_DISC: the quad of the sun.
 // validate: | SUN_DISC
 #include "common.glsl"
 
@@ -11,7 +10,7 @@ uniform vec4 sun_ndc;               // disc centre x, y and radius x, y, NDC
 varying vec2 v_disc;                // position in the disc, unit radius
 #else
 uniform mat4 clip_to_world_rel;     // inverse(projection * camera_view_rel)
-varying vec2 v_uv;
+varying vec3 v_dir;
 #endif
 
 void main()
@@ -23,7 +22,7 @@ void main()
     // Unproject the near-plane point: the far plane is thousands of kilometres away and its
     // inverse is so ill-conditioned in float that every corner came out the same direction.
     vec4 p = clip_to_world_rel * vec4(a_ndc, -1.0, 1.0);
-    v_uv = sky_map_uv(normalize(p.xyz / p.w));
+    v_dir = normalize(p.xyz / p.w);
     gl_Position = vec4(a_ndc, 0.999999, 1.0);
 #endif
 }

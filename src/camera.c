@@ -5,7 +5,8 @@
 
 #define CAM_PI 3.14159265358979323846
 
-static const char *const path_names[CAMERA_PATH_COUNT] = { "none", "surface", "1km", "10km" };
+static const char *const path_names[CAMERA_PATH_COUNT] = { "none", "surface", "1km", "10km",
+                                                                 "orbit" };
 
 void camera_defaults(struct camera *c)
 {
@@ -43,6 +44,14 @@ void camera_path_at(int path, double t_s, struct camera *out)
         out->pos[2] = 10000.0;
         out->heading_deg = (float)(360.0 * u);
         out->pitch_deg = -25.0f;
+        break;
+    case CAMERA_PATH_ORBIT:
+        /* low Earth orbit, 400 km, 7.7 km/s east, looking ahead and down at the limb (20 deg
+         * below the level there), turning slowly towards the sun's side and back */
+        out->pos[0] = 7700.0 * t_s;
+        out->pos[2] = 400000.0;
+        out->heading_deg = (float)(30.0 * sin(2.0 * CAM_PI * u));
+        out->pitch_deg = -28.0f;
         break;
     default:
         break;

@@ -35,6 +35,7 @@ enum camera_path {
     CAMERA_PATH_SURFACE,    /* 5 m above the sea, slowly turning */
     CAMERA_PATH_1KM,        /* 1 km altitude, looking at the horizon */
     CAMERA_PATH_10KM,       /* 10 km altitude */
+    CAMERA_PATH_ORBIT,      /* 400 km: low Earth orbit, the limb in view */
     CAMERA_PATH_COUNT
 };
 

@@ -6,7 +6,16 @@
 #include "grid.h"
 #include "quantize.h"
 
-#define EARTH_DROP_K ((float)(0.5 / EARTH_RADIUS_M))  /* drop r^2 / (2 R) of the sea at r, 1/m */
+#define EARTH_R2 ((float)(EARTH_RADIUS_M * EARTH_RADIUS_M))
+
+/* The sphere's drop below the camera's level plane at horizontal distance r (from r^2):
+ * R - sqrt(R^2 - r^2), written r^2 / (R + sqrt(R^2 - r^2)) so that it is exact near the camera
+ * (r^2 / 2R) as well as at orbit's horizon, where the parabola put the limb 2 px high. */
+static inline float sphere_drop(float r2)
+{
+    float q = EARTH_R2 - r2;
+    return r2 / ((float)EARTH_RADIUS_M + sqrtf(q > 0.0f ? q : 0.0f));
+}
 #define GRID_MARGIN 0.02      /* NDC beyond the bounding box of what displacement can reach */
 #define FILTER_NMIN 2.0f      /* Bruneton eq. 2: waves shorter than Nmin cells are cancelled... */
 #define FILTER_NMAX 4.0f      /* ...and kept in full from Nmax cells up */
@@ -862,7 +871,7 @@ static inline void write_tail(float *restrict vx, int n, const float *restrict r
     for (int e = 0; e < n; e++, vx += GRID_FLOATS) {
         vx[GRID_A_POS + 0] = rx[e] + d[4 * e + 0];
         vx[GRID_A_POS + 1] = ry[e] + d[4 * e + 1];
-        vx[GRID_A_POS + 2] = z - (rx[e] * rx[e] + ry[e] * ry[e]) * EARTH_DROP_K + d[4 * e + 2];
+        vx[GRID_A_POS + 2] = z - sphere_drop(rx[e] * rx[e] + ry[e] * ry[e]) + d[4 * e + 2];
         vx[GRID_A_REST] = rx[e];
         vx[GRID_A_REST + 1] = ry[e];
         if (!cpu)
@@ -891,7 +900,9 @@ static inline void write_quad(float *restrict vx, const float *restrict rx,
                               const int cpu)
 {
     f4 x = ld4(rx), y = ld4(ry);
-    zz -= (x * x + y * y) * EARTH_DROP_K;   /* the sea's drop on a sphere (camera.h) */
+    f4 r2 = x * x + y * y;
+    for (int e = 0; e < 4; e++)
+        zz[e] -= sphere_drop(r2[e]);   /* the sea's drop on a sphere (camera.h) */
     f4 xy_lo = __builtin_shufflevector(x, y, 0, 4, 1, 5), xy_hi = __builtin_shufflevector(x, y, 2, 6, 3, 7);
     f4 zx_lo = __builtin_shufflevector(zz, x, 0, 4, 1, 5), zx_hi = __builtin_shufflevector(zz, x, 2, 6, 3, 7);
     write_one(vx, __builtin_shufflevector(xy_lo, zx_lo, 0, 1, 4, 5) + ld4(d), y[0], cpu);
@@ -1068,7 +1079,7 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
     for (int pass = 0; pass < 3; pass++) {
         double r = fmin(reach, p->dmax);
         nq = frustum_slab_points(cf, cr, cu, tx, ty, near_m, far_m,
-                                 -p->alt - g->crest_m - r * r * EARTH_DROP_K,
+                                 -p->alt - g->crest_m - sphere_drop((float)(r * r)),
                                  -p->alt + g->crest_m, g->chop_m, q);
         for (int k = 0; k < nq; k++)
             reach = fmax(reach, sqrt(q[k][0] * q[k][0] + q[k][1] * q[k][1]));

@@ -40,7 +40,7 @@
 /* Limits kept by the steps: the swell CLI's ranges (--camera, --pitch, --sun). The sun stays
  * above 0 because the renderer reads an elevation of 0 as "default". */
 #define INPUT_ALT_MIN_M 1.0
-#define INPUT_ALT_MAX_M 50000.0
+#define INPUT_ALT_MAX_M 500000.0
 #define INPUT_PITCH_MAX_DEG 89.0
 #define INPUT_SUN_MIN_DEG 1.0
 #define INPUT_SUN_MAX_DEG 90.0

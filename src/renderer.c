@@ -50,10 +50,20 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "haze_sun", "haze_tau_ratio"
 };
 
-enum sky_uniform { SU_CLIP_TO_WORLD, SU_SKY_TEX, SU_SUN_NDC, SU_SUN_DISPLAY, SU_COUNT };
-static const char *const sky_uniform_names[SU_COUNT] = {
-    "clip_to_world_rel", "sky_tex", "sun_ndc", "sun_display"
+enum sky_uniform {
+    SU_CLIP_TO_WORLD, SU_SKY_VIEW, SU_SKY_VIEW_SCALE, SU_SKY_SUN, SU_SUN_NDC, SU_SUN_DISPLAY,
+    SU_COUNT
 };
+static const char *const sky_uniform_names[SU_COUNT] = {
+    "clip_to_world_rel", "sky_view", "sky_view_scale", "sky_sun", "sun_ndc", "sun_display"
+};
+
+/* The background sky seen from the camera's altitude (sky.h sky_view_gains): a 512 x 2 table
+ * of the Rayleigh and Mie gains by elevation, rebuilt when the altitude has moved by more than
+ * SKY_VIEW_DALT_M + SKY_VIEW_DALT_REL of it (its column changes by well under 1 % between). */
+#define SKY_VIEW_N 512
+#define SKY_VIEW_DALT_M 50.0
+#define SKY_VIEW_DALT_REL 0.02
 
 /* The background sky mesh: view rays and map coordinates per vertex (sky.vert). */
 #define SKY_MESH_W 33
@@ -155,7 +165,11 @@ struct renderer {
     double camera_raise_m;      /* how far the last frame raised the camera (renderer_frame) */
     GLuint fresnel_tex, vbo, ibo, quad_vbo;
     struct chain_tex sky_tex;
-    struct chain_tex sky_display_tex; /* the sky map tone-mapped: background, low quality */
+    struct chain_tex sky_display_tex; /* the sky map tone-mapped: low quality's reflections */
+    GLuint sky_view_tex;              /* background: gains by elevation from the camera */
+    float sky_view_scale[2][3];       /* texel / 255 x scale = gain x exposure, ray and mie */
+    float sky_view_sun[3];            /* the sun's transmittance from the camera */
+    double sky_view_alt;              /* altitude the table is for; NAN: to be built */
     int sky_half;                     /* sky_tex holds half-float radiances (scale 1) */
     GLuint fresnel_sun_tex;           /* low: A Fresnel, RGB (1 - F) water + Hu's Phong sun */
     const struct swell_table *fresnel;
@@ -270,6 +284,7 @@ void renderer_destroy(struct renderer *r)
     gpu_buffer_destroy(r->gpu, &r->ibo);
     gpu_buffer_destroy(r->gpu, &r->vbo);
     gpu_texture_destroy(r->gpu, &r->fresnel_sun_tex);
+    gpu_texture_destroy(r->gpu, &r->sky_view_tex);
     chain_destroy(r, &r->sky_display_tex);
     chain_destroy(r, &r->sky_tex);
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
@@ -652,7 +667,9 @@ static int create_textures(struct renderer *r, struct swell_err *err)
     update_sky_constants(r);
     if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
                            "renderer: display sky map", &r->sky_display_tex, err)) ||
-        (rc = upload_sky_display(r, err)))
+        (rc = upload_sky_display(r, err)) ||
+        (rc = gpu_texture_create(r->gpu, SKY_VIEW_N, 2, 1, FORMAT_RGBA8, 0,
+                                 "renderer: background sky table", &r->sky_view_tex, err)))
         return rc;
     if (r->d.quality == QUALITY_HIGH) {
         r->sky_half = r->gpu->caps.half_float;
@@ -821,6 +838,34 @@ static void update_sky_constants(struct renderer *r)
         r->haze.ray[c] *= r->exposure;
         r->haze.mie[c] *= r->exposure;
     }
+    r->sky_view_alt = NAN;   /* the background's table follows the sky */
+}
+
+/* The background's table for a camera alt_m up (see SKY_VIEW_N), and the sun's transmittance
+ * from there (the disc is the unattenuated sun above the air). */
+static int update_sky_view(struct renderer *r, double alt_m, struct swell_err *err)
+{
+    static float g[2][3 * SKY_VIEW_N];
+    sky_view_gains(&r->sky, alt_m, SKY_VIEW_N, g[0], g[1]);
+    for (int row = 0; row < 2; row++)
+        for (int c = 0; c < 3; c++) {
+            float m = 1e-30f;
+            for (int k = 0; k < SKY_VIEW_N; k++)
+                m = fmaxf(m, g[row][3 * k + c]);
+            r->sky_view_scale[row][c] = m * r->exposure;
+            for (int k = 0; k < SKY_VIEW_N; k++)
+                r->scratch[4 * (row * SKY_VIEW_N + k) + c] = unorm8(g[row][3 * k + c] / m);
+        }
+    for (int k = 0; k < 2 * SKY_VIEW_N; k++)
+        r->scratch[4 * k + 3] = 255;
+    float e_sun = asinf(fminf(fmaxf(r->sky.sun_dir[2], -1.0f), 1.0f));
+    sky_transmittance(sky_view_air_mass(alt_m, e_sun), r->sky_view_sun);
+    for (int c = 0; c < 3; c++)
+        if (!(r->sky.sun_irr[c] > 0.0f))
+            r->sky_view_sun[c] = 0.0f;   /* below the horizon (sky_bake) */
+    r->sky_view_alt = alt_m;
+    return upload_single(r->sky_view_tex, SKY_VIEW_N, 2, r->scratch,
+                         "renderer: background sky upload", err);
 }
 
 int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
@@ -936,21 +981,36 @@ static void stream_textures(struct renderer *r, double t_s)
 
 /* The sky is drawn only above the horizon (a scissor from just below the horizon's row up):
  * below it the sea covers every pixel, and a full-screen sky pass there was pure overdraw. */
-static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
-                     int width, int height)
+static int draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
+                    int width, int height, struct swell_err *err)
 {
     mat4 inv;
     float h = cam->heading_deg * (float)(M_PI / 180.0);
-    /* the sphere's horizon, acos(R / (R + alt)) below the level (camera.h) */
+    /* the sphere's horizon, a circle acos(R / (R + alt)) below the level (camera.h): its lowest
+     * row on screen, over the azimuths of the front half (from high up it bends down towards
+     * the sides, and a row through its middle left the corners to neither sky nor sea) */
     double alt = fmax(cam->pos[2], 0.0);
     double dip = acos(EARTH_RADIUS_M / (EARTH_RADIUS_M + alt));
-    vec4 far = { (float)(1e6 * cos(dip)) * cosf(h), (float)(1e6 * cos(dip)) * sinf(h),
-                 (float)(-1e6 * sin(dip)), 0.0f }, clip;
-    glm_mat4_mulv(world_to_clip, far, clip);
-    float hz = clip[3] > 0.0f ? clip[1] / clip[3] : -1.0f;   /* NDC y of the horizon */
+    float hz = 2.0f;   /* NDC y of the lowest horizon point in view */
+    for (int k = 0; k <= 64; k++) {
+        float a = h + (float)M_PI * ((float)k / 64.0f - 0.5f);
+        vec4 dir = { (float)cos(dip) * cosf(a), (float)cos(dip) * sinf(a), (float)-sin(dip),
+                     0.0f }, clip;
+        glm_mat4_mulv(world_to_clip, dir, clip);
+        if (clip[3] > 0.0f && fabsf(clip[0]) <= 1.05f * clip[3])
+            hz = fminf(hz, clip[1] / clip[3]);
+    }
+    if (hz > 1.5f)
+        hz = -1.0f;   /* no horizon in view: the sky pass everywhere */
     int y0 = (int)floorf((0.5f * (hz - 0.1f) + 0.5f) * (float)height);
     if (y0 >= height)
-        return;
+        return 0;
+    if (isnan(r->sky_view_alt) ||
+        fabs(alt - r->sky_view_alt) > SKY_VIEW_DALT_M + SKY_VIEW_DALT_REL * alt) {
+        int rc = update_sky_view(r, alt, err);
+        if (rc)
+            return rc;
+    }
     if (y0 < 0)
         y0 = 0;
     glEnable(GL_SCISSOR_TEST);
@@ -958,7 +1018,10 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
     glm_mat4_inv(world_to_clip, inv);
     glUseProgram(r->skyp.program);
     glUniformMatrix4fv(r->su[SU_CLIP_TO_WORLD], 1, GL_FALSE, (const GLfloat *)inv);
-    bind_tex(UNIT_SKY, chain_at(&r->sky_display_tex, 0), r->su[SU_SKY_TEX]);
+    glUniform3fv(r->su[SU_SKY_VIEW_SCALE], 2, &r->sky_view_scale[0][0]);
+    glUniform4f(r->su[SU_SKY_SUN], r->sky.sun_dir[0], r->sky.sun_dir[1], r->sky.sun_dir[2],
+                r->haze.mie_g);
+    bind_tex(UNIT_SKY, r->sky_view_tex, r->su[SU_SKY_VIEW]);
     glBindBuffer(GL_ARRAY_BUFFER, r->sky_vbo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->sky_ibo);
     glEnableVertexAttribArray(0);
@@ -969,7 +1032,7 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
      * projection (the sea, drawn next, hides whatever of it is below the horizon). Its colour:
      * E_sun over the disc's solid angle (6.8e-5 sr), tone-mapped. */
     const float *sd = r->sky.sun_dir;
-    vec4 dir = { sd[0], sd[1], sd[2], 0.0f };
+    vec4 dir = { sd[0], sd[1], sd[2], 0.0f }, clip;
     glm_mat4_mulv(world_to_clip, dir, clip);
     if (sd[2] > 0.0f && clip[3] > 0.0f) {
         float sun_disp[3];
@@ -979,7 +1042,7 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
         float ndc[4] = { clip[0] / clip[3], clip[1] / clip[3], SUN_RADIUS_RAD * proj[0][0],
                          SUN_RADIUS_RAD * proj[1][1] };
         for (int c = 0; c < 3; c++)
-            sun_disp[c] = tone_map_1(r->exposure * r->sky.sun_irr[c] / 6.8e-5f);
+            sun_disp[c] = tone_map_1(r->exposure * r->sky_view_sun[c] / 6.8e-5f);
         glUseProgram(r->sunp.program);
         glUniform4fv(r->sunu[SU_SUN_NDC], 1, ndc);
         glUniform3fv(r->sunu[SU_SUN_DISPLAY], 1, sun_disp);
@@ -989,6 +1052,7 @@ static void draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to
     }
     glDisableVertexAttribArray(0);
     glDisable(GL_SCISSOR_TEST);
+    return 0;
 }
 
 /* A slot whose whitecaps are not fetched enters Dupuy's sums as its patch's constants. */
@@ -1300,8 +1364,9 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
     else
         glClearColor(0.02f, 0.05f, 0.07f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
-    if (!r->d.no_sky)
-        draw_sky(r, cam, world_to_clip, width, height);
+    int rc;
+    if (!r->d.no_sky && (rc = draw_sky(r, cam, world_to_clip, width, height, err)))
+        return rc;
     if (nidx > 0) {
         /* Rows are ordered far to near, so without a depth buffer the painter's order holds. */
         if (depth_bits > 0) {

@@ -44,6 +44,79 @@ void sky_radiance(const struct sky *s, const float dir[3], float rgb[3])
     }
 }
 
+#define SCALE_HEIGHT_M 8000.0
+#define EARTH_R_M 6.371e6      /* camera.h EARTH_RADIUS_M */
+
+/* Column along the ray from altitude h at elevation e through rho = exp(-z / H) on the sphere,
+ * over H (units of the vertical column from the sea); 0 where the ray hits the Earth before it
+ * leaves the air (the caller uses the limb's then). Midpoint rule in the distance, steps of a
+ * fraction of the local scale length. */
+static double column(double h, double e)
+{
+    const double top = EARTH_R_M + 25.0 * SCALE_HEIGHT_M;   /* above 200 km: e^-25, nothing */
+    double r0 = EARTH_R_M + h, se = sin(e), sum = 0.0, s = 0.0;
+    if (r0 > top) {
+        /* from above the air: straight to where the ray enters it, if it does */
+        double b = r0 * se, c = r0 * r0 - top * top, disc = b * b - c;
+        if (se >= 0.0 || disc <= 0.0)
+            return 0.0;
+        s = -b - sqrt(disc);
+    }
+    for (int it = 0; it < 100000; it++) {
+        double r = sqrt(r0 * r0 + s * s + 2.0 * r0 * s * se), z = r - EARTH_R_M;
+        double climb = (s + r0 * se) / r;   /* dr / ds */
+        if (z < 0.0)
+            return -1.0;   /* below the sea */
+        if (r > top && climb >= 0.0)
+            break;         /* out of the air for good */
+        /* a step of a quarter of the distance over which the density changes e-fold along the
+         * ray (its height changes by H; the midpoint rule is then within 0.3 %), at least 10 m,
+         * at most 20 km */
+        double ds = fmin(fmax(0.25 * SCALE_HEIGHT_M / (fabs(climb) + 1e-3), 10.0), 20000.0);
+        double sm = s + 0.5 * ds;
+        double rm = sqrt(r0 * r0 + sm * sm + 2.0 * r0 * sm * se);
+        sum += exp(-(rm - EARTH_R_M) / SCALE_HEIGHT_M) * ds;
+        s += ds;
+    }
+    return sum / SCALE_HEIGHT_M;
+}
+
+float sky_view_air_mass(double alt_m, float elev_rad)
+{
+    double h = alt_m > 0.0 ? alt_m : 0.0;
+    /* the lowest elevation that misses the Earth: the limb, -acos(R / (R + h)) */
+    double limb = -acos(EARTH_R_M / (EARTH_R_M + h)) + 1e-6;
+    double e = elev_rad > limb ? elev_rad : limb;
+    double ky = air_mass(fmaxf((float)(e * 180.0 / M_PI), 0.0f));
+    double c0 = column(0.0, e > 0.0 ? e : 0.0), c = column(h, e);
+    return c > 0.0 && c0 > 0.0 ? (float)(c * ky / c0) : 0.0f;
+}
+
+void sky_transmittance(float m, float out[3])
+{
+    for (int c = 0; c < 3; c++)
+        out[c] = expf(-(tau_r[c] + MIE_EXT * TAU_M) * m);
+}
+
+void sky_view_gains(const struct sky *s, double alt_m, int n, float *ray, float *mie)
+{
+    float elev = sun_elev_deg(s), m_s = air_mass(elev);
+    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f);
+    for (int k = 0; k < n; k++) {
+        float e = (float)asin(2.0 * (k + 0.5) / n - 1.0);
+        float m_v = alt_m > 0.0 ? sky_view_air_mass(alt_m, e)
+                                : air_mass(fmaxf(e * 180.0f / (float)M_PI, 0.0f));
+        for (int c = 0; c < 3; c++) {
+            float tau = tau_r[c] + MIE_EXT * TAU_M;
+            float a = tau * m_s, b = tau * m_v;
+            float f = fabsf(b - a) > 1e-4f ? (expf(-a) - expf(-b)) / (b - a) : expf(-a);
+            float gain = twilight * m_v * f;   /* sky_radiance's, with this m_v */
+            ray[3 * k + c] = tau_r[c] * gain;
+            mie[3 * k + c] = TAU_M * gain;
+        }
+    }
+}
+
 void sky_haze(const struct sky *s, struct sky_haze *out)
 {
     float m_v = air_mass(0.0f), elev = sun_elev_deg(s), m_s = air_mass(elev);
@@ -58,7 +131,7 @@ void sky_haze(const struct sky *s, struct sky_haze *out)
         out->mie[c] = TAU_M * gain;
     }
     out->mie_g = MIE_G;
-    out->scale_height_m = 8000.0f;
+    out->scale_height_m = (float)SCALE_HEIGHT_M;
 }
 
 size_t sky_level_offset(const struct sky *s, int level)

@@ -46,6 +46,27 @@ struct sky_haze {
 };
 void sky_haze(const struct sky *s, struct sky_haze *out);
 
+/* The sky seen from a camera alt_m above the sea (Bruneton 2010 §6: from the ground to
+ * space), for the background: the same single scattering with the view path's air mass
+ * replaced by the column of an exponential atmosphere on the sphere (scale height 8 km) along
+ * the ray from the camera, in units of the vertical column from the sea (numerically
+ * integrated; scaled so that at the sea it is Kasten & Young's air mass, so alt 0 gives
+ * sky_radiance exactly). Above the atmosphere the column vanishes: black space, and a glowing
+ * limb where the ray grazes the air. Directions below the horizon that miss the Earth (from
+ * high up) are included; those that hit it take the limb's.
+ *
+ * For n elevations with sin e_k = 2 (k + 1/2) / n - 1 (even in the direction's z, so the
+ * shader indexes by z without an asin; the steps in elevation are finest at the horizon and
+ * about as fine at orbit's limb): L(e, gamma) = ray[e] p_R(gamma) + mie[e] p_M(gamma) per
+ * channel (rgb triples), p_R and p_M the phase functions of sky_radiance (common.glsl
+ * horizon_sky evaluates them). */
+void sky_view_gains(const struct sky *s, double alt_m, int n, float *ray, float *mie);
+/* Air mass of the column from a camera alt_m up along elevation elev_rad (as sky_view_gains);
+ * the sun disc's transmittance is exp(-tau m). */
+float sky_view_air_mass(double alt_m, float elev_rad);
+/* exp(-tau_c m) per channel: the transmittance of air mass m (sky_view_air_mass). */
+void sky_transmittance(float m, float out[3]);
+
 /* Sky radiance towards unit direction dir (z up); below the horizon the horizon's. */
 void sky_radiance(const struct sky *s, const float dir[3], float rgb[3]);
 

@@ -77,10 +77,11 @@ static void usage(FILE *f)
 "View:\n"
 "  --sun ELEV,AZIM   sun elevation above the horizon (0..90] and azimuth CCW from east,\n"
 "                    degrees                                                      [30,0]\n"
-"  --camera X,Y,Z    camera position, m (x east, y north, z altitude 0.1..50000)  [0,0,10]\n"
+"  --camera X,Y,Z    camera position, m (x east, y north, z altitude 0.1..500000) [0,0,10]\n"
 "  --heading DEG     view direction CCW from east, degrees (-360..360)               [0]\n"
 "  --pitch DEG       view pitch, degrees, negative looks down (-89..89)            [-10]\n"
-"  --path P          scripted camera: surface | 1km | 10km (overrides --camera)     [none]\n"
+"  --path P          scripted camera: surface | 1km | 10km | orbit (400 km; overrides\n"
+"                    --camera)                                                   [none]\n"
 "Rendering:\n"
 "  --quality Q       low | high                                                   [high]\n"
 "  --geometry G      grid (projected grid) | patches (near/far patches)           [grid]\n"
@@ -251,9 +252,9 @@ static int parse_args(int argc, char **argv, struct options *o)
             o->sun_azim_deg = (float)s[1];
         } else if (!strcmp(a, "--camera")) {
             r = parse_doubles(a, v, 3, -1e7, 1e7, o->camera.pos, &err);
-            if (!r && (o->camera.pos[2] < 0.1 || o->camera.pos[2] > 50000))
+            if (!r && (o->camera.pos[2] < 0.1 || o->camera.pos[2] > INPUT_ALT_MAX_M))
                 r = swell_fail(&err, SWELL_E_ARG, "--camera: altitude %g m in '%s' is out of "
-                               "range (0.1 to 50000 m)", o->camera.pos[2], v);
+                               "range (0.1 to %.0f m)", o->camera.pos[2], v, INPUT_ALT_MAX_M);
             o->camera_given = 1;
         } else if (!strcmp(a, "--heading")) {
             r = parse_float(a, v, -360, 360, "deg", &o->camera.heading_deg, &err);
@@ -262,7 +263,8 @@ static int parse_args(int argc, char **argv, struct options *o)
         } else if (!strcmp(a, "--path")) {
             o->path = camera_path_from_name(v);
             if (o->path <= CAMERA_PATH_NONE)
-                r = swell_fail(&err, SWELL_E_ARG, "--path: '%s' is not surface, 1km or 10km", v);
+                r = swell_fail(&err, SWELL_E_ARG, "--path: '%s' is not surface, 1km, 10km or orbit",
+                               v);
         } else if (!strcmp(a, "--quality")) {
             o->quality = render_quality_from_name(v);
             if (o->quality < 0)

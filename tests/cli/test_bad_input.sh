@@ -129,7 +129,7 @@ for v in nonexistent ../calm ""; do usage swell --preset "$v" preset; done
 values swell --wind 0 -5 40.5 nan inf 1e300 abc ""
 values swell --budget 0 -1 1X 2G nan ""
 values swell --sun 0,0 -10,0 91,0 nan,0 30,nan inf,0 30 30,0,1 "" 30,,0 a,b 1e300,0
-values swell --camera 0,0,0 0,0,-1 0,0,50001 nan,0,10 0,inf,10 1,2 1,2,3,4 1e39,0,10 "" a,b,c
+values swell --camera 0,0,0 0,0,-1 0,0,500001 nan,0,10 0,inf,10 1,2 1,2,3,4 1e39,0,10 "" a,b,c
 values swell --heading -361 361 nan inf 1e300 x ""
 values swell --pitch -90 90 nan inf 1e300 x ""
 values swell --path 5km "" SURFACE

@@ -2,7 +2,7 @@
  * camera poses over every preset's baked sea, each frame cleared to magenta first
  * (renderer_desc.debug_uncovered, `swell --debug uncovered`) and required to hold none.
  *
- * Poses: altitude log-uniform from 0.3 m to 50 km (a third of them below 10 m, where crests
+ * Poses: altitude log-uniform from 0.3 m to 400 km (a third of them below 10 m, where crests
  * reach the camera), pitch uniform in [-89, 89], any heading, a position within 100 km and a
  * time within 1000 s. The renderer keeps the camera CAMERA_CLEARANCE_M above the surface under
  * it (renderer.h); the projected grid's range holds what displacement can reach (grid.c).
@@ -49,9 +49,9 @@ static void random_pose(struct camera *c, double *t)
 {
     camera_defaults(c);
     double u = uniform();
-    /* a third below 10 m, the rest log-uniform up to 50 km */
+    /* a third below 10 m, the rest log-uniform up to 400 km (low Earth orbit) */
     c->pos[2] = u < 1.0 / 3.0 ? 0.3 * pow(10.0 / 0.3, 3.0 * u)
-                              : 10.0 * pow(5000.0, (u - 1.0 / 3.0) * 1.5);
+                              : 10.0 * pow(40000.0, (u - 1.0 / 3.0) * 1.5);
     c->pos[0] = (uniform() - 0.5) * 2e5;
     c->pos[1] = (uniform() - 0.5) * 2e5;
     c->pitch_deg = (float)(-89.0 + 178.0 * uniform());

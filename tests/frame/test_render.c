@@ -360,14 +360,36 @@ static void test_horizon(void **state)
     assert_true(row[(int)py - 5] > row[(int)py + 5] + 10.0);
 }
 
+/* The sphere's horizon per column: where the cone of directions acos(R / (R + h)) below the
+ * level projects (azimuths around the heading, each column centre between two samples); -1
+ * where it is not in view. */
+static void horizon_rows(const struct camera *c, double pred[W])
+{
+    double dip = acos(EARTH_RADIUS_M / (EARTH_RADIUS_M + c->pos[2]));
+    for (int x = 0; x < W; x++)
+        pred[x] = -1.0;
+    double lx = -1.0, ly = 0.0;
+    for (int k = 1600; k >= -1600; k--) {
+        double az = glm_rad(c->heading_deg) + k * 0.0005, qx, qy;
+        double dk[3] = { cos(dip) * cos(az), cos(dip) * sin(az), -sin(dip) };
+        if (!project_dir(c, dk, &qx, &qy))
+            continue;
+        for (int x = (int)ceil(lx - 0.5); lx >= 0.0 && x + 0.5 <= qx && x < W; x++)
+            if (x >= 0 && x + 0.5 >= lx)
+                pred[x] = ly + (qy - ly) * (x + 0.5 - lx) / fmax(qx - lx, 1e-9);
+        lx = qx;
+        ly = qy;
+    }
+}
+
 /* The sea reaches the horizon of a sphere (camera.h EARTH_RADIUS_M): drawn without the sky,
  * its silhouette (below the magenta rows, in every column) is where the cone of directions
- * acos(R / (R + h)) below the level projects, within 1 px, from 10 m to 50 km, on the CPU grid
+ * acos(R / (R + h)) below the level projects, within 1 px, from 10 m to 400 km, on the CPU grid
  * (gles2-min) and the vertex-shader grid (gles3). A flat sea put it 3.2 degrees (13 px here)
  * too high at 10 km. */
 static void test_horizon_sphere(void **state)
 {
-    static const double alts[] = { 10.0, 1000.0, 10000.0, 50000.0 };
+    static const double alts[] = { 10.0, 1000.0, 10000.0, 50000.0, 100000.0, 400000.0 };
     static const int tiers[] = { TIER_GLES2_MIN, TIER_GLES3 };
     (void)state;
     g_no_sky = 1;
@@ -383,24 +405,8 @@ static void test_horizon_sphere(void **state)
             dir[2] = -sin(dip);
             assert_true(project_dir(&c, dir, &px, &py));
             render(tiers[ti], QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 1.0, fx.img, NULL);
-            /* the horizon is a circle: per column, where the cone of directions dip below the
-             * level projects (azimuths around the heading, the nearest column's) */
             double pred[W];
-            for (int x = 0; x < W; x++)
-                pred[x] = -1.0;
-            double lx = -1.0, ly = 0.0;
-            for (int k = 1600; k >= -1600; k--) {
-                /* azimuths from left to right; each column centre between two samples */
-                double az = glm_rad(c.heading_deg) + k * 0.0005, qx, qy;
-                double dk[3] = { cos(dip) * cos(az), cos(dip) * sin(az), -sin(dip) };
-                if (!project_dir(&c, dk, &qx, &qy))
-                    continue;
-                for (int x = (int)ceil(lx - 0.5); lx >= 0.0 && x + 0.5 <= qx && x < W; x++)
-                    if (x >= 0 && x + 0.5 >= lx)
-                        pred[x] = ly + (qy - ly) * (x + 0.5 - lx) / fmax(qx - lx, 1e-9);
-                lx = qx;
-                ly = qy;
-            }
+            horizon_rows(&c, pred);
             int off = 0, n = 0;
             double worst = 0.0, mid = 0.0;
             for (int x = 0; x < W; x++) {
@@ -427,6 +433,49 @@ static void test_horizon_sphere(void **state)
             assert_true(off == 0);
         }
     g_no_sky = 0;
+}
+
+/* From low Earth orbit (camera_path orbit, 400 km): every pixel drawn (the renderer clears to
+ * magenta), black space above the Earth, and a thin blue limb of air where the rays graze it
+ * (sky.h sky_view_gains): per column, the sky more than 3 degrees (12 px) above the sphere's
+ * horizon is dark, the 1 degree just above it lit and bluer than it is red. Both tiers. */
+static void test_orbit(void **state)
+{
+    static const int tiers[] = { TIER_GLES2_MIN, TIER_GLES3 };
+    (void)state;
+    for (size_t ti = 0; ti < 2; ti++) {
+        struct camera c;
+        double pred[W];
+        camera_path_at(CAMERA_PATH_ORBIT, 0.0, &c);
+        render(tiers[ti], QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 20.0f, &c, 1.0, fx.img, NULL);
+        horizon_rows(&c, pred);
+        int magenta = 0, cols = 0;
+        double space = 0.0, limb_b = 0.0, limb_r = 0.0;
+        for (int k = 0; k < W * H; k++)
+            magenta += fx.img[4 * k] == 255 && fx.img[4 * k + 1] == 0 && fx.img[4 * k + 2] == 255;
+        for (int x = 0; x < W; x++) {
+            int y = (int)floor(pred[x]);
+            if (pred[x] < 0.0 || y < 16)
+                continue;
+            cols++;
+            for (int yy = 0; yy < y - 12; yy++)
+                for (int ch = 0; ch < 3; ch++)
+                    space = fmax(space, fx.img[4 * (yy * W + x) + ch]);
+            for (int yy = y - 4; yy < y; yy++) {
+                limb_b += fx.img[4 * (yy * W + x) + 2] / 4.0;
+                limb_r += fx.img[4 * (yy * W + x) + 0] / 4.0;
+            }
+        }
+        print_message("%s, orbit: %d magenta pixels; over %d columns the sky 3 deg above the "
+                      "horizon at most %.0f, the 1 deg above it blue %.0f, red %.0f\n",
+                      gpu_tier_name(tiers[ti]), magenta, cols, space, limb_b / fmax(cols, 1),
+                      limb_r / fmax(cols, 1));
+        assert_int_equal(magenta, 0);
+        assert_true(cols > W / 2);
+        assert_true(space <= 8.0);
+        assert_true(limb_b / cols > 25.0);
+        assert_true(limb_b > 1.1 * limb_r);   /* measured 1.2: its lowest, densest air is whiter */
+    }
 }
 
 /* Sun glint: with a low sun ahead, the bright pixels below the horizon (glitter) are centred on
@@ -880,6 +929,7 @@ int main(void)
         cmocka_unit_test_teardown(test_baked_tables, reset_fixture),
         cmocka_unit_test_teardown(test_horizon, reset_fixture),
         cmocka_unit_test_teardown(test_horizon_sphere, reset_fixture),
+        cmocka_unit_test_teardown(test_orbit, reset_fixture),
         cmocka_unit_test_teardown(test_glint, reset_fixture),
         cmocka_unit_test_teardown(test_loop, reset_fixture),
         cmocka_unit_test_teardown(test_tiers, reset_fixture),

@@ -394,7 +394,8 @@ static void test_patches(void **state)
             assert_true(isfinite(vx[a]));
         double r2 = (double)vx[GRID_A_REST] * vx[GRID_A_REST] +
                     (double)vx[GRID_A_REST + 1] * vx[GRID_A_REST + 1];
-        double drop = r2 / (2.0 * EARTH_RADIUS_M);   /* the sphere's, below the level */
+        double drop = r2 / (EARTH_RADIUS_M + sqrt(fmax(EARTH_RADIUS_M * EARTH_RADIUS_M - r2, 0.0)));
+        /* the sphere's, R - sqrt(R^2 - r^2) below the level (grid.c) */
         if (vx[GRID_A_POS] == vx[GRID_A_REST] && vx[GRID_A_POS + 1] == vx[GRID_A_REST + 1] &&
             fabs(vx[GRID_A_POS + 2] + 6.0 + drop) < 1e-5 + 1e-6 * drop) {
             still++;

@@ -81,11 +81,78 @@ static void test_haze_horizon(void **state)
     }
 }
 
+/* The background from altitude (sky.h sky_view_gains). Air masses against closed forms: at the
+ * sea Kasten & Young's exactly; straight up from h, e^{-h/H} of the sea's; towards the limb
+ * from 400 km twice the sea's horizontal column (the ray grazes the surface and leaves again);
+ * nothing above the level from 400 km (the air is below). The gains at the sea reproduce
+ * sky_radiance, and from orbit the space above the limb is black. */
+static double ref_kasten_young(double e_deg)
+{
+    return 1.0 / (sin(e_deg * M_PI / 180.0) + 0.50572 * pow(e_deg + 6.07995, -1.6364));
+}
+
+static void test_view_from_altitude(void **state)
+{
+    (void)state;
+    for (double e = 0.0; e <= 90.0; e += 7.5)
+        assert_true(fabs(sky_view_air_mass(0.0, (float)(e * M_PI / 180.0)) -
+                         ref_kasten_young(e)) < 1e-4 * ref_kasten_young(e));
+    for (double h = 1000.0; h <= 30000.0; h *= 2.0) {
+        double m = sky_view_air_mass(h, (float)(M_PI / 2.0));
+        if (fabs(m - exp(-h / 8000.0)) > 0.005 * exp(-h / 8000.0))
+            fail_msg("zenith from %g m: air mass %g, e^-h/H %g", h, m, exp(-h / 8000.0));
+    }
+    double limb = acos(6.371e6 / (6.371e6 + 4e5));
+    double ml = sky_view_air_mass(4e5, (float)(-limb + 1e-4));
+    print_message("from 400 km: grazing air mass %.1f (sea's horizontal %.1f), level %.3g\n", ml,
+                  ref_kasten_young(0.0), (double)sky_view_air_mass(4e5, 0.0f));
+    assert_true(fabs(ml - 2.0 * ref_kasten_young(0.0)) < 0.03 * ml);
+    assert_true(sky_view_air_mass(4e5, 0.0f) == 0.0f);
+    /* rays that miss the limb climb through ever thinner air: the column falls with elevation */
+    float prev = ml;
+    for (double e = -limb + 0.002; e < 0.0; e += 0.002) {
+        float m = sky_view_air_mass(4e5, (float)e);
+        assert_true(m <= prev);
+        prev = m;
+    }
+
+    struct sky sk;
+    struct swell_err err;
+    assert_int_equal(sky_bake(25.0f, 40.0f, 64, &sk, &err), 0);
+    enum { N = 90 };
+    float ray[3 * N], mie[3 * N];
+    sky_view_gains(&sk, 0.0, N, ray, mie);
+    const double g = 0.76;
+    for (int k = N / 2; k < N; k++) {
+        double e = asin(2.0 * (k + 0.5) / N - 1.0);
+        for (double az = 0.0; az < 6.2; az += 1.1) {
+            float dir[3] = { (float)(cos(e) * cos(az)), (float)(cos(e) * sin(az)), (float)sin(e) };
+            float ref[3];
+            sky_radiance(&sk, dir, ref);
+            double cg = dir[0] * sk.sun_dir[0] + dir[1] * sk.sun_dir[1] + dir[2] * sk.sun_dir[2];
+            double p_r = 3.0 / (16.0 * M_PI) * (1.0 + cg * cg), hg = 1.0 + g * g - 2.0 * g * cg;
+            double p_m = (1.0 - g * g) / (4.0 * M_PI * hg * sqrt(hg));
+            for (int c = 0; c < 3; c++) {
+                double l = ray[3 * k + c] * p_r + mie[3 * k + c] * p_m;
+                if (fabs(l - ref[c]) > 1e-4 * ref[c] + 1e-9)
+                    fail_msg("elevation %g az %g channel %d: gains give %g, sky_radiance %g",
+                             e, az, c, l, (double)ref[c]);
+            }
+        }
+    }
+    sky_view_gains(&sk, 4e5, N, ray, mie);
+    for (int k = N / 2; k < N; k++)
+        for (int c = 0; c < 3; c++)
+            assert_true(ray[3 * k + c] == 0.0f && mie[3 * k + c] == 0.0f);
+    sky_destroy(&sk);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_level_alpha),
         cmocka_unit_test(test_haze_horizon),
+        cmocka_unit_test(test_view_from_altitude),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
