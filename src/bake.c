@@ -271,7 +271,7 @@ static int memory_at(const struct seastate *s, const struct swell_tables *out,
     return 0;
 }
 
-#define RATE_ITERATIONS 40
+#define RATE_ITERATIONS 28
 
 /* Algorithm 1 on the combined field, then the foam memory's rate (see top): epsilon from the
  * CDF of sum k_i at eq. 13's <Theta>; the rate by bisection in log r so that

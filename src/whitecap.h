@@ -66,7 +66,7 @@ int whitecap_memory_loop(const float *k, size_t texels, int frames, float step, 
  * range / WHITECAP_SUM_BINS, mass split linearly between the two nearest grid points), the
  * histograms convolved. P(S < x) is then within the mass of about n grid spacings of the true
  * empirical one. */
-#define WHITECAP_SUM_BINS 2048
+#define WHITECAP_SUM_BINS 512
 #define SWELL_WHITECAP_SUM_MAX 4      /* variables (patterns) */
 
 struct whitecap_sum {
