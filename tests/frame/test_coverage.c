@@ -25,6 +25,7 @@
 #include "preset.h"
 #include "renderer.h"
 #include "tables.h"
+#include "frame/frame_util.h"
 
 #define W 128
 #define H 72
@@ -96,11 +97,8 @@ static int fuzz(const struct swell_tables *t, const struct run *ru, int *raised)
         struct renderer_stats st;
         double t_s;
         random_pose(&c, &t_s);
-        assert_int_equal(g_ph.be->begin_frame(g_ph.p, &err), 0);
-        if (renderer_frame(r, &c, t_s, W, H, &err))
-            fail_msg("renderer_frame: %s", err.msg);
-        assert_int_equal(g_ph.be->present(g_ph.p, &err), 0);
-        assert_int_equal(g_ph.be->read_rgba(g_ph.p, g_img, &err), 0);
+        if (frame_draw(&g_ph, r, &c, t_s, W, H, g_img, &err))
+            fail_msg("frame: %s", err.msg);
         renderer_get_stats(r, &st);
         *raised += st.camera_raise_m > 0.0;
         int n = uncovered(g_img);
@@ -155,21 +153,9 @@ static void test_camera_fuzz(void **state)
 
 int main(void)
 {
-    struct platform_desc pd = { 0 };
-    struct swell_err err = { 0 };
-    const char *ci = getenv("CI");
-    pd.kind = PLATFORM_SURFACELESS;
-    pd.width = W;
-    pd.height = H;
-    pd.gles_major = 3;
-    if (platform_open(&pd, &g_ph, &err)) {
-        if (ci && !strcmp(ci, "true")) {
-            fprintf(stderr, "test_coverage: no EGL device under CI=true: %s\n", err.msg);
-            return 1;
-        }
-        fprintf(stderr, "test_coverage: skipped, no EGL device: %s\n", err.msg);
-        return 77;
-    }
+    int open_rc = frame_open("test_coverage", W, H, &g_ph);
+    if (open_rc)
+        return open_rc;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_camera_fuzz),
     };
