@@ -19,3 +19,7 @@ shot moderate_low  --preset moderate --camera 0,0,12 --pitch -8 --heading 20 --s
 shot glint         --preset moderate --camera 0,0,8 --pitch -4 --heading 0 --sun 7,0
 shot storm         --preset storm --camera 0,0,20 --pitch -14 --heading 60 --sun 40,200
 shot altitude_1km  --preset moderate --path 1km --sun 30,20
+shot storm_boat    --preset storm --camera 1586.8,48.1,5 --pitch -8 --heading 0 --sun 30,20 --time 0
+shot altitude_10km --preset moderate --camera 0,0,10000 --pitch -4 --sun 20,30
+shot nadir_3km     --preset moderate --camera 0,0,3000 --pitch -89 --sun 45,90
+shot orbit         --preset moderate --path orbit --sun 30,20
