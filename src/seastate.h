@@ -47,8 +47,9 @@ struct seastate {
     float choppiness;       /* lambda of the choppy wave model (Tessendorf 2001; Dupuy eq. 1).
                                default 1. range [0, 2] */
     int   whitecap_model;   /* enum whitecap_model. default MOM80 */
-    float foam_half_life_s; /* half-life of foam opacity (Tessendorf 2023 eq. 7-8). default 3.
-                               range (0, 60] */
+    float foam_half_life_s; /* half-life of foam (Tessendorf 2023 eq. 7-8): through eq. 13 it
+                               sets how much of the model's W is fresh breaking, so how long
+                               foam outlasts a break (bake.c). default 3. range (0, 60] */
     uint64_t budget_bytes;  /* memory budget for everything the renderer uploads, bytes.
                                default 0 = 16 MiB ("default" preset). range [1 MiB, 1 GiB] */
 };

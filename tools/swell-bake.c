@@ -47,7 +47,7 @@ static void usage(FILE *f)
 "  --seed N          random seed                                       [1]\n"
 "  --choppiness L    choppy-wave lambda (Dupuy 2012 eq. 1)              [1]    0..2\n"
 "  --whitecap-model NAME  mom80 (3.84e-6 U^3.41) | wu88 (2.0e-6 U^3.75) [mom80]\n"
-"  --foam-half-life S  foam opacity half-life, s (Tessendorf eq. 7-8)   [3]    0.05..60\n"
+"  --foam-half-life S  foam half-life, s (Tessendorf eq. 7-8, 13)      [3]    0.05..60\n"
 "\n"
 "Tables:\n"
 "  --patterns N      wave patterns of different periods (Dupuy 2012 §2) [4]   1..4\n"

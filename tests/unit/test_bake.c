@@ -449,6 +449,34 @@ static void test_foam_does_not_tile(void **state)
         fail_msg("foam repeats on a pattern's tile: correlation %.3f", worst);
 }
 
+/* The half-life enters as Tessendorf's: through eq. 13 a longer-lived foam needs less fresh
+ * breaking for the same W, so epsilon drops and the memory recovers more slowly, while the
+ * foam's fraction stays the model's. */
+static void test_half_life(void **state)
+{
+    (void)state;
+    struct swell_tables t[2];
+    struct swell_err err = { 0 };
+    const float hl[2] = { 1.0f, 10.0f };
+    for (int i = 0; i < 2; i++) {
+        struct seastate s = small_state(16);
+        s.foam_half_life_s = hl[i];
+        assert_int_equal(swell_bake(&s, NULL, &t[i], &err), 0);
+        print_message("half-life %g s: breaking %.5f, epsilon %.4f, recovery %.4g k/s, foam "
+                      "%.5f of W %.5f\n", (double)hl[i], (double)t[i].whitecap_breaking_fraction,
+                      (double)t[i].whitecap_epsilon, (double)t[i].foam_recovery_per_s,
+                      (double)t[i].whitecap_fraction_measured,
+                      (double)t[i].whitecap_fraction_model);
+        assert_true(fabs(t[i].whitecap_fraction_measured - t[i].whitecap_fraction_model) <
+                    0.01 * t[i].whitecap_fraction_model);
+    }
+    assert_true(t[1].whitecap_breaking_fraction < 0.5f * t[0].whitecap_breaking_fraction);
+    assert_true(t[1].whitecap_epsilon < t[0].whitecap_epsilon);
+    assert_true(t[1].foam_recovery_per_s < t[0].foam_recovery_per_s);
+    tables_destroy(&t[0]);
+    tables_destroy(&t[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -458,6 +486,7 @@ int main(void)
         cmocka_unit_test(test_pattern_sum_holds_up),
         cmocka_unit_test(test_foam_memory_baked),
         cmocka_unit_test(test_foam_does_not_tile),
+        cmocka_unit_test(test_half_life),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
