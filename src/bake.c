@@ -199,11 +199,13 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     w->white = calloc(chain, sizeof(float));
     /* displacement: level 0 per frame now, box-filtered down to the geometry size later */
     w->disp = calloc(quantize_chain_floats(n, n, F, ilog2(n / s->size_geo) + 1), sizeof(float));
-    w->k = calloc(texels * (size_t)F, sizeof(float));
-    w->mem = calloc(texels * (size_t)F, sizeof(float));
-    if (!w->slope || !w->white || !w->disp || !w->k || !w->mem)
+    if (w->breaks) {   /* the others' k is the constant 1/n: nothing to remember */
+        w->k = calloc(texels * (size_t)F, sizeof(float));
+        w->mem = calloc(texels * (size_t)F, sizeof(float));
+    }
+    if (!w->slope || !w->white || !w->disp || (w->breaks && (!w->k || !w->mem)))
         return swell_fail(err, SWELL_E_NOMEM, "pattern %d: cannot allocate %zu floats of fields",
-                          index, chain * 2 + texels * 5 * (size_t)F);
+                          index, chain * 2 + texels * 6 * (size_t)F);
     for (int f = 0; f < F; f++) {
         struct ocean_fields fl;
         if ((r = ocean_eval(w->ocean, f, &fl, err)))
@@ -211,7 +213,7 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
         float *sl = w->slope + texels * 4 * (size_t)f;
         float *wh = w->white + texels * 4 * (size_t)f;
         float *dp = w->disp + texels * 4 * (size_t)f;
-        float *kf = w->k + texels * (size_t)f;
+        float *kf = w->k ? w->k + texels * (size_t)f : NULL;
         for (size_t i = 0; i < texels; i++) {
             float a = fl.jxx[i], b = fl.jyy[i], c = fl.jxy[i];
             float k = w->breaks ? whitecap_dupuy_k(a, b, c, s->patterns)  /* Dupuy eq. 7 */
@@ -228,7 +230,8 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
             dp[i * 4 + 1] = fl.dy[i];
             dp[i * 4 + 2] = fl.dz[i];
             dp[i * 4 + 3] = 0.0f;
-            kf[i] = k;
+            if (kf)
+                kf[i] = k;
         }
         progress(opts, (index + (f + 1.0) / F) / (s->patterns + 1.0), "patterns");
     }

@@ -300,8 +300,9 @@ void renderer_destroy(struct renderer *r)
     free(r);
 }
 
-/* Channels 0..2 (m, m^2, 0: what ocean.frag reads; channel 3 is the bake's k_i) the same in every texel of every level and layer: the whitecaps of a pattern that carries
- * none (bake.c) are a constant, never a texture. */
+/* Channels 0..2 (m, m^2, 0: what ocean.frag reads; channel 3 is the bake's k_i) the same in
+ * every texel of every level and layer: the whitecaps of a pattern that carries none (bake.c)
+ * are a constant, never a texture. */
 static int whitecaps_constant(const struct swell_table *t)
 {
     size_t n = table_bytes(t);
@@ -845,7 +846,7 @@ static void update_sky_constants(struct renderer *r)
  * from there (the disc is the unattenuated sun above the air). */
 static int update_sky_view(struct renderer *r, double alt_m, struct swell_err *err)
 {
-    static float g[2][3 * SKY_VIEW_N];
+    float g[2][3 * SKY_VIEW_N];
     sky_view_gains(&r->sky, alt_m, SKY_VIEW_N, g[0], g[1]);
     for (int row = 0; row < 2; row++)
         for (int c = 0; c < 3; c++) {

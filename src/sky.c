@@ -22,6 +22,23 @@ static float sun_elev_deg(const struct sky *s)
     return asinf(s->sun_dir[2]) * 180.0f / (float)M_PI;
 }
 
+/* The single-scattering closed form (sky.h) for a view path of air mass m_v, per channel:
+ * the gains that multiply the Rayleigh and the Mie phase functions. Below the horizon the sun
+ * still lights the upper sky a little (twilight): fade over 6 deg. */
+static void scatter_gains(const struct sky *s, float m_v, float ray[3], float mie[3])
+{
+    float elev = sun_elev_deg(s), m_s = air_mass(elev);
+    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f);
+    for (int c = 0; c < 3; c++) {
+        float tau = tau_r[c] + MIE_EXT * TAU_M;
+        float a = tau * m_s, b = tau * m_v;
+        float f = fabsf(b - a) > 1e-4f ? (expf(-a) - expf(-b)) / (b - a) : expf(-a);
+        float gain = twilight * m_v * f;
+        ray[c] = tau_r[c] * gain;
+        mie[c] = TAU_M * gain;
+    }
+}
+
 void sky_radiance(const struct sky *s, const float dir[3], float rgb[3])
 {
     float z = dir[2] > 0.0f ? dir[2] : 0.0f;
@@ -31,17 +48,10 @@ void sky_radiance(const struct sky *s, const float dir[3], float rgb[3])
     float p_r = 3.0f / (16.0f * (float)M_PI) * (1.0f + cg * cg);
     float hg = 1.0f + MIE_G * MIE_G - 2.0f * MIE_G * cg;
     float p_m = (1.0f - MIE_G * MIE_G) / (4.0f * (float)M_PI * hg * sqrtf(hg));
-    float m_v = air_mass(asinf(v[2]) * 180.0f / (float)M_PI);
-    float elev = sun_elev_deg(s);
-    /* Below the horizon the sun still lights the upper sky a little (twilight): fade over 6 deg. */
-    float m_s = air_mass(elev);
-    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f);
-    for (int c = 0; c < 3; c++) {
-        float tau = tau_r[c] + MIE_EXT * TAU_M;
-        float a = tau * m_s, b = tau * m_v;
-        float f = fabsf(b - a) > 1e-4f ? (expf(-a) - expf(-b)) / (b - a) : expf(-a);
-        rgb[c] = twilight * (tau_r[c] * p_r + TAU_M * p_m) * m_v * f;
-    }
+    float ray[3], mie[3];
+    scatter_gains(s, air_mass(asinf(v[2]) * 180.0f / (float)M_PI), ray, mie);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = ray[c] * p_r + mie[c] * p_m;
 }
 
 #define SCALE_HEIGHT_M 8000.0
@@ -100,36 +110,16 @@ void sky_transmittance(float m, float out[3])
 
 void sky_view_gains(const struct sky *s, double alt_m, int n, float *ray, float *mie)
 {
-    float elev = sun_elev_deg(s), m_s = air_mass(elev);
-    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f);
-    for (int k = 0; k < n; k++) {
-        float e = (float)asin(2.0 * (k + 0.5) / n - 1.0);
-        float m_v = alt_m > 0.0 ? sky_view_air_mass(alt_m, e)
-                                : air_mass(fmaxf(e * 180.0f / (float)M_PI, 0.0f));
-        for (int c = 0; c < 3; c++) {
-            float tau = tau_r[c] + MIE_EXT * TAU_M;
-            float a = tau * m_s, b = tau * m_v;
-            float f = fabsf(b - a) > 1e-4f ? (expf(-a) - expf(-b)) / (b - a) : expf(-a);
-            float gain = twilight * m_v * f;   /* sky_radiance's, with this m_v */
-            ray[3 * k + c] = tau_r[c] * gain;
-            mie[3 * k + c] = TAU_M * gain;
-        }
-    }
+    for (int k = 0; k < n; k++)
+        scatter_gains(s, sky_view_air_mass(alt_m, (float)asin(2.0 * (k + 0.5) / n - 1.0)),
+                      ray + 3 * k, mie + 3 * k);
 }
 
 void sky_haze(const struct sky *s, struct sky_haze *out)
 {
-    float m_v = air_mass(0.0f), elev = sun_elev_deg(s), m_s = air_mass(elev);
-    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f);
-    for (int c = 0; c < 3; c++) {
-        float tau = tau_r[c] + MIE_EXT * TAU_M;
-        float a = tau * m_s, b = tau * m_v;
-        float f = fabsf(b - a) > 1e-4f ? (expf(-a) - expf(-b)) / (b - a) : expf(-a);
-        float gain = twilight * m_v * f;   /* sky_radiance at elevation 0 */
-        out->tau_ext[c] = tau;
-        out->ray[c] = tau_r[c] * gain;
-        out->mie[c] = TAU_M * gain;
-    }
+    scatter_gains(s, air_mass(0.0f), out->ray, out->mie);   /* sky_radiance at elevation 0 */
+    for (int c = 0; c < 3; c++)
+        out->tau_ext[c] = tau_r[c] + MIE_EXT * TAU_M;
     out->mie_g = MIE_G;
     out->scale_height_m = (float)SCALE_HEIGHT_M;
 }

@@ -277,21 +277,3 @@ double whitecap_dupuy_coverage(double epsilon, double mu, double var)
         return epsilon > mu ? 1.0 : epsilon < mu ? 0.0 : 0.5;
     return 0.5 + 0.5 * erf((epsilon - mu) / sqrt(2.0 * var));   /* Dupuy eq. 6 */
 }
-
-double whitecap_dupuy_epsilon(double coverage, double mu, double var)
-{
-    if (!(var > 0.0))
-        return mu;
-    double w = coverage < 1e-9 ? 1e-9 : coverage > 1.0 - 1e-9 ? 1.0 - 1e-9 : coverage;
-    /* erf has no inverse in C11: bisection on the monotonic eq. 6, 2^-100 of the bracket
-     * (more than double precision), so the result does not depend on a starting guess. */
-    double sd = sqrt(var), lo = mu - 10.0 * sd, hi = mu + 10.0 * sd;
-    for (int it = 0; it < 100; it++) {
-        double mid = 0.5 * (lo + hi);
-        if (whitecap_dupuy_coverage(mid, mu, var) < w)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}

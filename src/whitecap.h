@@ -94,8 +94,5 @@ float whitecap_dupuy_k(float jxx, float jyy, float jxy, int patterns);
 /* Eq. 6: coverage W = 1/2 + 1/2 erf((epsilon - mu) / (sqrt(2) sigma)) of j ~ N(mu, var);
  * a step at mu when var <= 0. */
 double whitecap_dupuy_coverage(double epsilon, double mu, double var);
-/* Eq. 6 inverted: epsilon giving coverage W (clamped to [1e-9, 1 - 1e-9] so epsilon is finite;
- * mu when var <= 0). */
-double whitecap_dupuy_epsilon(double coverage, double mu, double var);
 
 #endif

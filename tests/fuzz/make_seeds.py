@@ -61,7 +61,7 @@ out('fuzz_ktx', 'ok_kv_unknown_key', bytes(ori))
 crc = bytearray(base); i = crc.find(b'0x'); crc[i + 2] = ord('X')
 out('fuzz_ktx', 'bad_crc_not_hex', bytes(crc))
 ver = bytearray(base); i = ver.find(b'swell.version\0') + 14; ver[i] = ord('2')
-out('fuzz_ktx', 'bad_version_3', bytes(ver))
+out('fuzz_ktx', 'bad_version_2', bytes(ver))
 # a key/value length pointing past the block
 kvl = set_u32(base, 64, 0x7fffffff)
 out('fuzz_ktx', 'bad_kv_length_huge', kvl)
