@@ -5,6 +5,22 @@
 #define EARTH_R 6.371e6             // camera.h EARTH_RADIUS_M, m
 #define EARTH_R2 4.0589641e13       // its square, m^2
 
+// The lattice of random offsets that keeps every pattern from repeating on its tile (detile.h,
+// where the construction is; test_detile checks these against it).
+#define DETILE_CELLS 2.0            // cells per tile
+#define DETILE_N 128.0              // the hash's period, cells
+#define DETILE_OFFSETS 8.0          // an offset is (b >> 3, b & 7) / 8 tiles, b the hash byte
+
+// The offsets of three hash bytes t (as fetched: b / 255, b < 64), x and y: 255 t is within
+// 0.04 of b in fp16, and b's two 3-bit halves come out exact (test_detile).
+void detile_offsets(vec3 t, out vec3 ox, out vec3 oy)
+{
+    vec3 b = floor(t * 255.0 + 0.5);
+    vec3 hi = floor(b * (1.0 / DETILE_OFFSETS));
+    ox = hi * (1.0 / DETILE_OFFSETS);
+    oy = (b - DETILE_OFFSETS * hi) * (1.0 / DETILE_OFFSETS);
+}
+
 // Stereographic sky-map coordinates of a direction (Bruneton 2010 §5.2): zenith at the centre,
 // horizon on the inscribed circle. Directions below the horizon use the horizon.
 vec2 sky_map_uv(vec3 r)

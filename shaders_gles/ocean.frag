@@ -21,12 +21,18 @@
 // whose RGB holds the water colour and Hu's Phong term for the current sun.
 #include "common.glsl"
 
-uniform sampler2D fresnel_tex;      // Hu §5.1: A = Fresnel at the bumped view vector
+uniform sampler2D fresnel_tex;      // Hu §5.1: A = Fresnel at the bumped view vector; an
+                                    // atlas that also holds the lattice hash (renderer.c)
 uniform sampler2D sky_tex;
 uniform vec2 ds_offset;             // added to the fetched slopes to give ds = s - s0
 uniform vec4 slope_scale[4];        // RGBA8 dequantisation per fragment pattern slot
 uniform vec4 slope_bias[4];
+uniform vec3 detile_shift[4];       // per slot: the camera's lattice cell modulo DETILE_N plus
+                                    // the pattern's shift (detile.h), the cell's colour shift
+uniform vec4 detile_atlas;          // 1 / the atlas size, the hash rows' origin (v)
+uniform vec2 slope_mean[4];         // per slot: the mean slope over its patch (its top level)
 #ifdef QUALITY_HIGH
+uniform float wc_mean[4];           // per slot: the foam memory's mean over its patch
 uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
@@ -92,43 +98,105 @@ vec2 g_var;
 float g_mu;
 float g_kvar;
 
-#ifdef QUALITY_HIGH
-void add_slope(vec4 s)
+// No pattern repeats on its tile (detile.h): a slot's tables are read at the three random
+// offsets of its lattice triangle, with weights g_tw (normalised: sum g_tw^2 = 1) and uv
+// offsets (g_ox, g_oy) (detile_offsets). The taps are ordered by their vertex's colour (x + y) mod 3, so a
+// tap's offset changes only where its weight is 0 and the implicit LOD of its fetch (no
+// gradients on gles2-min) stays its neighbours'. Integer cell arithmetic below DETILE_N + a
+// wrapped uv: exact in fp16.
+vec3 g_tw;
+vec3 g_ox;
+vec3 g_oy;
+
+void detile(vec2 uv, vec3 sh)
 {
-    g_ds += s.xy;
-    g_var += max(s.zw - s.xy * s.xy, vec2(0.0));
+    vec2 q = uv * DETILE_CELLS;
+    vec2 c = floor(q);
+    vec2 f = q - c;
+    vec2 hc = c + sh.xy;
+    hc -= DETILE_N * floor(hc * (1.0 / DETILE_N));
+    vec4 h = texture2D(fresnel_tex, (hc + 0.5) * detile_atlas.xy + vec2(0.0, detile_atlas.z));
+    vec3 t = vec3(h.r, f.y > f.x ? h.b : h.g, h.a);
+    vec3 w = vec3(1.0 - max(f.x, f.y), abs(f.x - f.y), min(f.x, f.y));
+    // corner (0, 0) has colour s, the middle vertex s + 1, corner (1, 1) s + 2
+    float s = c.x + c.y + sh.z;
+    s -= 3.0 * floor((s + 0.5) * (1.0 / 3.0));
+    if (s > 1.5) {
+        t = t.yzx;
+        w = w.yzx;
+    } else if (s > 0.5) {
+        t = t.zxy;
+        w = w.zxy;
+    }
+    g_tw = w * inversesqrt(dot(w, w));
+    detile_offsets(t, g_ox, g_oy);
 }
 
-void add_whitecap(vec4 k)
+#define TAP(tex, uv, j) texture2D(tex, uv + vec2(g_ox.j, g_oy.j))
+
+#ifdef QUALITY_HIGH
+// The blend of three taps of a moment table (detile.h): means by w_j about the patch's mean m
+// (m + sum_j w_j (s_j - m)), variances by w_j^2.
+void add_slope(vec4 b, vec4 sc, vec2 m, vec4 a0, vec4 a1, vec4 a2)
+{
+    vec4 s0 = b + sc * a0, s1 = b + sc * a1, s2 = b + sc * a2;
+    g_ds += g_tw.x * s0.xy + g_tw.y * s1.xy + g_tw.z * s2.xy + (1.0 - dot(g_tw, vec3(1.0))) * m;
+    vec3 w2 = g_tw * g_tw;
+    g_var += w2.x * max(s0.zw - s0.xy * s0.xy, vec2(0.0)) +
+             w2.y * max(s1.zw - s1.xy * s1.xy, vec2(0.0)) +
+             w2.z * max(s2.zw - s2.xy * s2.xy, vec2(0.0));
+}
+
+void add_whitecap(vec4 b, vec4 sc, float mu, vec4 a0, vec4 a1, vec4 a2)
 {
     // Dupuy eq. 7-8 per pattern, on the foam memory m_i of k_i; the variance is summed per
     // pattern (sum <m_i^2> - <m_i>^2), the same uncorrelated-pattern assumption as eq. 8
-    // without its cross terms of the means.
-    g_mu += k.x;
-    g_kvar += max(k.y - k.x * k.x, 0.0);
+    // without its cross terms of the means. The taps blend m's deviation from its mean mu.
+    vec4 k0 = b + sc * a0, k1 = b + sc * a1, k2 = b + sc * a2;
+    g_mu += mu + dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu));
+    g_kvar += dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
+                                        k2.y - k2.x * k2.x), vec3(0.0)));
 }
-#define SLOPE(i, tex, uv) add_slope(slope_bias[i] + slope_scale[i] * texture2D(tex, uv))
-#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i] + wc_scale[i] * texture2D(tex, uv))
+// (one line each: GLSL ES 1.00 has no line continuation)
+#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], TAP(tex, uv, x), TAP(tex, uv, y), TAP(tex, uv, z))
+#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], TAP(tex, uv, x), TAP(tex, uv, y), TAP(tex, uv, z))
 #else
-// The single pass needs the mean slope only; ds_offset holds the fetched slots' biases.
-#define SLOPE(i, tex, uv) g_ds += slope_scale[i].xy * texture2D(tex, uv).xy
+// The single pass needs the mean slope only.
+#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i]) + slope_mean[i] + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy)
 #endif
 
 void main()
 {
     g_ds = ds_offset;
     g_var = vec2(0.0);
+#ifdef QUALITY_HIGH
+    g_mu = v_base.z;
+    g_kvar = v_base.w;
+#endif
+    // each slot's whitecaps with its slopes: they share its taps
 #if FS_PATTERNS > 0
     SLOPE(0, slope_tex0, v_uv0);
+#if defined(QUALITY_HIGH) && FS_WHITECAPS > 0
+    WHITECAP(0, wc_tex0, v_uv0);
+#endif
 #endif
 #if FS_PATTERNS > 1
     SLOPE(1, slope_tex1, v_uv1);
+#if defined(QUALITY_HIGH) && FS_WHITECAPS > 1
+    WHITECAP(1, wc_tex1, v_uv1);
+#endif
 #endif
 #if FS_PATTERNS > 2
     SLOPE(2, slope_tex2, v_uv2);
+#if defined(QUALITY_HIGH) && FS_WHITECAPS > 2
+    WHITECAP(2, wc_tex2, v_uv2);
+#endif
 #endif
 #if FS_PATTERNS > 3
     SLOPE(3, slope_tex3, v_uv3);
+#if defined(QUALITY_HIGH) && FS_WHITECAPS > 3
+    WHITECAP(3, wc_tex3, v_uv3);
+#endif
 #endif
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.
     vec4 uv = v_lin + v_lin_dx * g_ds.x + v_lin_dy * g_ds.y;
@@ -197,21 +265,8 @@ void main()
     // Refracted light, eq. 28.
     vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_radiance;
 
-    // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments of the foam memory.
-    g_mu = v_base.z;
-    g_kvar = v_base.w;
-#if FS_WHITECAPS > 0
-    WHITECAP(0, wc_tex0, v_uv0);
-#endif
-#if FS_WHITECAPS > 1
-    WHITECAP(1, wc_tex1, v_uv1);
-#endif
-#if FS_WHITECAPS > 2
-    WHITECAP(2, wc_tex2, v_uv2);
-#endif
-#if FS_WHITECAPS > 3
-    WHITECAP(3, wc_tex3, v_uv3);
-#endif
+    // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments of the foam memory (summed
+    // with the slopes above).
 #if FS_WHITECAPS > 0
     float cover = whitecap_cover(whitecap_epsilon, g_mu, g_kvar);
 #else

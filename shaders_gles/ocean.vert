@@ -33,6 +33,10 @@ uniform vec4 disp_bias[4];              // blend weight of loop frame b (frames 
 uniform vec4 disp_pattern[4];           // uv offset xy, 1 / L_i, eq. 2 wavelength, m
 uniform sampler2D disp_a0;
 uniform sampler2D disp_b0;
+uniform sampler2D detile_tex;           // the Fresnel atlas (renderer.c fresnel_atlas): its hash
+uniform vec4 detile_atlas_v;            // 1 / its size, the hash rows' origin (v)
+uniform vec2 disp_cell[4];              // the camera's lattice cell modulo DETILE_N plus the
+                                        // pattern's own shift (detile.h)
 #if VTF_PATTERNS > 1
 uniform sampler2D disp_a1;
 uniform sampler2D disp_b1;
@@ -68,14 +72,35 @@ vec2 grid_rest(vec2 g)
     return t * d.xy;
 }
 
-// Loop frames a and b blended here in float (no CPU blend, no requantisation), weighted by
-// Bruneton eq. 2: 0 for waves shorter than 2 cells, 1 from 4 cells up (grid.c).
+// One tap: loop frames a and b blended here in float (no CPU blend, no requantisation).
+vec3 disp_tap(sampler2D a, sampler2D b, int i, vec2 uv)
+{
+    vec3 t = mix(texture2DLod(a, uv, 0.0).xyz, texture2DLod(b, uv, 0.0).xyz, disp_scale[i].w);
+    return disp_bias[i].xyz + disp_scale[i].xyz * t;
+}
+
+// Pattern i's displacement read at its lattice's three random offsets and blended (detile.h,
+// as grid.c detile_taps_cell), weighted by Bruneton eq. 2: 0 for waves shorter than 2 cells,
+// 1 from 4 cells up (grid.c).
 vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
 {
     float u = clamp((disp_pattern[i].w / foot - 2.0) / 2.0, 0.0, 1.0);
     vec2 uv = disp_pattern[i].xy + rest * disp_pattern[i].z;
-    vec3 t = mix(texture2DLod(a, uv, 0.0).xyz, texture2DLod(b, uv, 0.0).xyz, disp_scale[i].w);
-    return u * u * (3.0 - 2.0 * u) * (disp_bias[i].xyz + disp_scale[i].xyz * t);
+    vec2 q = uv * DETILE_CELLS;
+    vec2 c = floor(q);
+    vec2 f = q - c;
+    vec2 hc = c + disp_cell[i];
+    hc -= DETILE_N * floor(hc * (1.0 / DETILE_N));
+    vec4 h = texture2DLod(detile_tex, (hc + 0.5) * detile_atlas_v.xy + vec2(0.0, detile_atlas_v.z),
+                          0.0);
+    vec3 ox, oy;
+    detile_offsets(vec3(h.r, f.y > f.x ? h.b : h.g, h.a), ox, oy);
+    vec3 w = vec3(1.0 - max(f.x, f.y), abs(f.x - f.y), min(f.x, f.y));
+    w *= inversesqrt(dot(w, w));
+    vec3 d = w.x * disp_tap(a, b, i, uv + vec2(ox.x, oy.x)) +
+             w.y * disp_tap(a, b, i, uv + vec2(ox.y, oy.y)) +
+             w.z * disp_tap(a, b, i, uv + vec2(ox.z, oy.z));
+    return u * u * (3.0 - 2.0 * u) * d;
 }
 #else
 attribute vec3 a_pos;       // displaced, camera-relative, m
@@ -85,6 +110,7 @@ attribute vec2 a_geo_k;     // CPU patterns: foam memory mean, variance (Dupuy e
 #endif
 
 uniform mat4 world_to_clip;             // camera-relative world -> clip
+uniform vec2 fresnel_uv_scale;          // the Fresnel texels' share of the atlas (renderer.c)
 uniform vec2 pattern_uv_offset[4];      // per fragment-shader pattern slot
 uniform float pattern_inv_size[4];      // 1 / L_i, 1/m
 
@@ -148,7 +174,7 @@ vec4 lookups(vec3 v, vec2 s)
     // fresnel.h: radius r = 1 - sqrt(1 - theta / (pi / 2)), theta = asin(rho)
     float r = 1.0 - sqrt(max(1.0 - asin(min(rho, 1.0)) / (0.5 * PI), 0.0));
     fv *= r / max(rho, 1e-6);
-    return vec4(vec2(0.5) + 0.5 * fv, sky_map_uv(reflect(-v, n)));
+    return vec4((vec2(0.5) + 0.5 * fv) * fresnel_uv_scale, sky_map_uv(reflect(-v, n)));
 }
 
 // Aerial perspective from the sky model (sky.h sky_haze): the path of length |p| to the

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "detile.h"
 #include "grid.h"
 #include "quantize.h"
 
@@ -65,6 +66,43 @@ struct f4_image {
     uint32_t box_gen;         /* first texels from box[0] over box[1] columns, box[2] and [3] rows */
 };
 
+/* One frame's constants of a pattern's lattice (detile.h): a rest point's cell coordinates are
+ * q = q0 + rest qk (camera-relative, float), its cell index floor(q) + cell0 (the camera's
+ * cell modulo DETILE_N, from double); offsets in texels of an image of nx x ny texels. */
+struct detile_frame {
+    const uint8_t *hash;      /* detile_hash_table's (the grid's copy) */
+    int pattern;
+    float q0x, q0y, qk;
+    long cell0x, cell0y;
+};
+
+static void detile_frame_set(struct detile_frame *f, const uint8_t *hash, int pattern,
+                             double inv_l, const struct camera *cam)
+{
+    f->hash = hash;
+    f->pattern = pattern;
+    f->qk = (float)(inv_l * DETILE_CELLS);
+    double ux = cam->pos[0] * inv_l, uy = cam->pos[1] * inv_l;
+    /* cell q = DETILE_CELLS (floor(cam / L) + frac(cam / L) + rest / L) */
+    f->q0x = (float)((ux - floor(ux)) * DETILE_CELLS);
+    f->q0y = (float)((uy - floor(uy)) * DETILE_CELLS);
+    f->cell0x = (long)fmod(floor(ux) * DETILE_CELLS, (double)DETILE_N);
+    f->cell0y = (long)fmod(floor(uy) * DETILE_CELLS, (double)DETILE_N);
+}
+
+static inline void detile_at(const struct detile_frame *f, float rx, float ry,
+                             struct detile_taps *t)
+{
+    float qx = f->q0x + rx * f->qk, qy = f->q0y + ry * f->qk;
+    /* floor by conversion (floorf is a call on x86-64's SSE2); |q| < 2^31 where a pattern's
+     * eq. 2 weight is not 0 (a cell is half a tile) */
+    int ix = (int)qx, iy = (int)qy;
+    ix -= qx < (float)ix;
+    iy -= qy < (float)iy;
+    detile_taps_cell(f->hash, f->pattern, (long)ix + f->cell0x, (long)iy + f->cell0y,
+                     qx - (float)ix, qy - (float)iy, t);
+}
+
 struct grid_pattern {
     const struct swell_table *disp, *slope, *wc;
     float *disp_mem;          /* owned storage of every image below */
@@ -75,6 +113,7 @@ struct grid_pattern {
     float slope_sc[4], slope_bi[4], wc_sc[4], wc_bi[4];
     double inv_l;             /* 1 / L_i */
     float lambda_m;           /* characteristic wavelength for the eq. 2 weight, m */
+    float k_mean;             /* the foam memory's mean over the patch (its top mip texel) */
     int cpu, levels;
 };
 
@@ -82,6 +121,7 @@ struct grid_pattern {
  * l are x = mx0[l] + rest_x mk[l] (the uv offset and the half-texel shift folded in, in double). */
 struct pattern_frame {
     struct grid_pattern *p;
+    struct detile_frame dt;   /* its lattice (detile.h) */
     double mx0[16], my0[16], mk[16];
     float lev_k;              /* level-0 texels per metre of footprint: width / L_i */
 };
@@ -93,6 +133,7 @@ struct disp_frame {
     const float *data;        /* its texels */
     float x0, y0, kx, ky;
     float lambda_m;           /* eq. 2's characteristic wavelength, m */
+    struct detile_frame dt;   /* its lattice (detile.h) */
     float foot_zero;          /* footprints from this one up give weight 0, m */
     float coord_max;          /* COORD_MAX */
     int wm, hm, wshift;
@@ -116,7 +157,7 @@ struct grid {
     float *row_d2;            /* per projected grid row: smallest squared distance, m^2 */
     float *acc;               /* per-vertex summed displacement (x, y, z, 0), m (displace) */
     float *wv, *fx, *fy;      /* per vertex, one pattern's eq. 2 weight and bilinear fractions */
-    int *off;                 /* and its texel's byte offset (disp_coords) */
+    int *ix, *iy;             /* and the first texel of its bilinear footprint (disp_coords) */
     float *blk_foot;          /* per block of VBLK vertices: its smallest footprint this frame, m */
     int *run;                 /* [start, end) vertices of the runs of blocks a pattern displaces */
     float unit[3];            /* 0, 1 and 1e-6 m: clamp bounds (disp_coords says why a field) */
@@ -127,6 +168,7 @@ struct grid {
     float *row_foot;          /* per row of triangles: smallest squared distance, m^2 */
     int rows;
     struct grid_pattern p[SWELL_MAX_PATTERNS];
+    uint8_t hash[DETILE_N * DETILE_N];  /* detile_hash_table */
     double crest_m;           /* bound on the summed vertical displacement, m */
     double chop_m;            /* bound on the summed horizontal (choppy) displacement, m */
 };
@@ -312,7 +354,8 @@ void grid_destroy(struct grid *g)
     free(g->wv);
     free(g->fx);
     free(g->fy);
-    free(g->off);
+    free(g->ix);
+    free(g->iy);
     free(g->blk_foot);
     free(g->run);
     free(g->fade);
@@ -360,7 +403,8 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
         g->wv = calloc((size_t)g->npad, sizeof(float));
         g->fx = calloc((size_t)g->npad, sizeof(float));
         g->fy = calloc((size_t)g->npad, sizeof(float));
-        g->off = calloc((size_t)g->npad, sizeof(int));
+        g->ix = calloc((size_t)g->npad, sizeof(int));
+        g->iy = calloc((size_t)g->npad, sizeof(int));
         g->blk_foot = calloc((size_t)g->npad / VBLK, sizeof(float));
         g->run = calloc((size_t)g->npad / VBLK + 1, sizeof(int));
         g->foot = calloc(n, sizeof(float));
@@ -374,11 +418,12 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     }
     if (!g->foot || !g->fade || !g->row_foot || !g->rx || !g->ry || !g->row_d2 ||
         !g->col_sx || !g->row_x || !g->row_y || !g->acc || !g->wv || !g->fx || !g->fy ||
-        !g->off || !g->blk_foot || !g->run) {
+        !g->ix || !g->iy || !g->blk_foot || !g->run) {
         rc = swell_fail(err, SWELL_E_NOMEM, "grid: no memory for %d vertices", g->nverts);
         goto fail;
     }
     init_fade(g);
+    detile_hash_table(g->hash);
     g->unit[0] = 0.0f;
     g->unit[1] = 1.0f;
     g->unit[2] = 1e-6f;
@@ -394,6 +439,14 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
                             "tables; re-bake the tables for the gles2-min format", i);
             goto fail;
         }
+        if (p->disp->width < DETILE_OFFSETS || p->disp->height < DETILE_OFFSETS) {
+            /* the taps' offsets are whole texels from 8 up (detile.h); swell-bake makes 8+ */
+            rc = swell_fail(err, SWELL_E_FORMAT, "grid: pattern %d's displacement table is %d x "
+                            "%d texels; the lattice's offsets need at least %d x %d: re-bake "
+                            "(size_geo >= %d)", i, p->disp->width, p->disp->height,
+                            DETILE_OFFSETS, DETILE_OFFSETS, DETILE_OFFSETS);
+            goto fail;
+        }
         p->inv_l = 1.0 / (pi->size_m > 0.0f ? pi->size_m : 1.0f);
         /* One wavelength stands for the pattern's band in eq. 2: the geometric mean of its
          * [k_min, k_max], else a quarter of the patch. */
@@ -406,8 +459,21 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
                 side = fmaxf(side, fabsf(quantize_decode(p->disp, 0, p->disp->data[k])));
                 side = fmaxf(side, fabsf(quantize_decode(p->disp, 1, p->disp->data[k + 1])));
             }
-            g->crest_m += top;
-            g->chop_m += side;
+            /* read at three offsets blended (detile.h): at most sqrt(3) times a tap */
+            g->crest_m += DETILE_GAIN_MAX * top;
+            g->chop_m += DETILE_GAIN_MAX * side;
+        }
+        {
+            /* the foam memory's mean: its top level's texels over the loop (detile.h blends
+             * the deviation from it) */
+            const struct swell_table *wc = p->wc;
+            int top = wc->levels - 1;
+            size_t n = (size_t)table_level_width(wc, top) * (size_t)table_level_height(wc, top);
+            double sum = 0.0;
+            for (int l = 0; l < wc->layers; l++)
+                for (size_t k = 0; k < n; k++)
+                    sum += quantize_decode(wc, 0, wc->data[table_offset(wc, top, l) + 4 * k]);
+            p->k_mean = (float)(sum / ((double)n * wc->layers));
         }
         p->cpu = (d->cpu_patterns >> i) & 1u;
         if (p->cpu) {
@@ -710,8 +776,8 @@ static void block_foot(int n, const float *restrict foot, float *restrict out)
 }
 
 /* For the vertices of the nr runs [run[2r], run[2r + 1]) (whole blocks): the weights of
- * Bruneton eq. 2 for each vertex's cell of size foot (times the fade), the texel coordinates
- * x = x0 + rest_x kx in float, floored (rest positions are camera-relative floats and x0 a
+ * Bruneton eq. 2 for each vertex's cell of size foot (times the fade), the texel
+ * coordinates x = x0 + rest_x kx in float, floored (rest positions are camera-relative floats and x0 a
  * wrapped offset: float keeps what the inputs hold), and the byte offsets of the bilinear
  * footprints. By quads: a fixed loop of 4 over restrict-qualified arrays is what -O2's
  * vectorisers turn into straight vector code. */
@@ -719,11 +785,12 @@ static void disp_coords(const struct disp_frame *f, int nr, const int *restrict 
                                const float *restrict rx, const float *restrict ry,
                                const float *restrict foot, const float *restrict fade,
                                const float *unit, float *restrict wv, float *restrict fx,
-                               float *restrict fy, int *restrict off, float ext[4])
+                               float *restrict fy, int *restrict oix, int *restrict oiy,
+                               float ext[4])
 {
     const float lambda_m = f->lambda_m, x0 = f->x0, y0 = f->y0, kx = f->kx, ky = f->ky;
     float xl[4], xh[4], yl[4], yh[4];
-    const int wm = f->wm, hm = f->hm, wshift = f->wshift;
+    const int wm = f->wm, hm = f->hm;
     /* bounds loaded, not constants: with constants GCC threads the clamps' branches (w is 0 or
      * 1 there) and can then no longer vectorise the loop, or selects by masks, not max/min */
     const float u_lo = unit[0], u_hi = unit[1], ft_lo = unit[2];
@@ -758,10 +825,8 @@ static void disp_coords(const struct disp_frame *f, int nr, const int *restrict 
                 int nx = sx < 0.0f, ny = sy < 0.0f;
                 fx[e] = sx + (float)nx;
                 fy[e] = sy + (float)ny;
-                ix = (ix - nx) & wm;
-                iy = (iy - ny) & hm;
-                /* bytes: 16 (iy (w + 1) + ix), in an int up to 11585^2 texels */
-                off[e] = 16 * ((iy << wshift) + iy + ix);
+                oix[e] = (ix - nx) & wm;
+                oiy[e] = (iy - ny) & hm;
             }
     ext[0] = ext[2] = c_hi;
     ext[1] = ext[3] = c_lo;
@@ -780,37 +845,75 @@ static inline int floor_int(float x)
     return i - (x < (float)i);
 }
 
-/* The weighted bilinear float4 fetches of the vertices of the nr runs, added to acc, or stored
- * there for the first pattern (a vertex of weight 0, or of fade 0 on the patches, gets 0 times
- * a finite texel: the images start zeroed). stride: bytes per image row. */
-static inline void fetch_one(const char *restrict base, const char *restrict base_c, int off,
-                             float w, float sx, float sy, float *restrict acc, const int first)
+/* One tap's bilinear fetch: the tap's whole-texel offset (ox, oy) added to the footprint's
+ * first texel (x, y). */
+static inline f4 tap4(const char *restrict base, const char *restrict base_c, int x, int y,
+                      int ox, int oy, int wm, int hm, int wshift, f4 vx, f4 vy)
 {
+    x = (x + ox) & wm;
+    y = (y + oy) & hm;
+    int off = 16 * ((y << wshift) + y + x);   /* bytes: 16 (y (w + 1) + x) */
     const float *a = (const float *)(base + off), *c = (const float *)(base_c + off);
     f4 a0 = ld4(a), a1 = ld4(a + 4), c0 = ld4(c), c1 = ld4(c + 4);
-    f4 top = a0 + (a1 - a0) * sx, bot = c0 + (c1 - c0) * sx;
-    f4 sum = w * (top + (bot - top) * sy);
-    if (!first)
-        sum = ld4(acc) + sum;
-    memcpy(acc, &sum, sizeof(sum));
+    f4 top = a0 + (a1 - a0) * vx, bot = c0 + (c1 - c0) * vx;
+    return top + (bot - top) * vy;
 }
 
-static inline void disp_fetch(const float *restrict data, size_t stride, int nr,
-                              const int *restrict run, const float *restrict wv,
-                              const float *restrict fx, const float *restrict fy,
-                              const int *restrict off, float *restrict acc, const int first)
+/* The displacement of the vertices of the nr runs: each reads the pattern at its lattice
+ * triangle's three random offsets (detile.h, as detile_taps_cell; the same bilinear fractions
+ * for the three, the offsets being whole texels) and adds their blend times its eq. 2 weight
+ * wv to acc, or stores it there for the first pattern. */
+static void disp_fetch(const struct disp_frame *f, const uint8_t *restrict hash, int nr,
+                       const int *restrict run, const float *restrict rx,
+                       const float *restrict ry, const float *restrict wv,
+                       const float *restrict fx, const float *restrict fy,
+                       const int *restrict ix, const int *restrict iy, float *restrict acc,
+                       const int first)
 {
-    const char *base = (const char *)data, *base_c = base + stride;
-    /* by quads unrolled by hand (runs are whole blocks): -O2 keeps a loop otherwise */
+    const char *base = (const char *)f->data, *base_c = base + f->stride;
+    const struct detile_frame *d = &f->dt;
+    const int m = DETILE_N - 1;
+    const int shx = (int)((d->cell0x + DETILE_SHIFT_X * d->pattern) & m);
+    const int shy = (int)((d->cell0y + DETILE_SHIFT_Y * d->pattern) & m);
+    const int wm = f->wm, hm = f->hm, wshift = f->wshift;
+    const f4 one = { 1.0f, 1.0f, 1.0f, 1.0f };
+    /* each hash byte's offset in texels, (h >> 3, h & 7) eighths of the tile (tables are
+     * POT and >= 8 texels, grid_create) */
+    int ox[DETILE_OFFSETS * DETILE_OFFSETS], oy[DETILE_OFFSETS * DETILE_OFFSETS];
+    for (int h = 0; h < DETILE_OFFSETS * DETILE_OFFSETS; h++) {
+        ox[h] = (h / DETILE_OFFSETS) * ((wm + 1) / DETILE_OFFSETS);
+        oy[h] = (h % DETILE_OFFSETS) * ((hm + 1) / DETILE_OFFSETS);
+    }
     for (int r = 0; r < nr; r++)
         for (int e = run[2 * r]; e < run[2 * r + 1]; e += 4) {
-            fetch_one(base, base_c, off[e], wv[e], fx[e], fy[e], acc + 4 * (size_t)e, first);
-            fetch_one(base, base_c, off[e + 1], wv[e + 1], fx[e + 1], fy[e + 1],
-                      acc + 4 * (size_t)e + 4, first);
-            fetch_one(base, base_c, off[e + 2], wv[e + 2], fx[e + 2], fy[e + 2],
-                      acc + 4 * (size_t)e + 8, first);
-            fetch_one(base, base_c, off[e + 3], wv[e + 3], fx[e + 3], fy[e + 3],
-                      acc + 4 * (size_t)e + 12, first);
+            /* by quads (runs are whole blocks): the lattice cell, its hash indices and the
+             * barycentric weights in vectors */
+            f4 qx = d->q0x + ld4(rx + e) * d->qk, qy = d->q0y + ld4(ry + e) * d->qk;
+            i32x4 cx = __builtin_convertvector(qx, i32x4), cy = __builtin_convertvector(qy, i32x4);
+            cx += (i32x4)(qx < __builtin_convertvector(cx, f4));   /* floor: -1 where below */
+            cy += (i32x4)(qy < __builtin_convertvector(cy, f4));
+            f4 ux = qx - __builtin_convertvector(cx, f4), uy = qy - __builtin_convertvector(cy, f4);
+            i32x4 hx = (cx + shx) & m, hy = (cy + shy) & m;
+            i32x4 hx1 = (hx + 1) & m, hy1 = (hy + 1) & m, up = (i32x4)(uy > ux);
+            i32x4 i0 = hy * DETILE_N + hx, i2 = hy1 * DETILE_N + hx1;
+            i32x4 i1 = ((hy1 * DETILE_N + hx) & up) | ((hy * DETILE_N + hx1) & ~up);
+            f4 hi = max4(ux, uy), lo = ux + uy - hi;
+            f4 w0 = one - hi, w1 = hi - lo, w2 = lo, s2 = w0 * w0 + w1 * w1 + w2 * w2;
+            f4 ww = ld4(wv + e);
+            for (int k = 0; k < 4; k++) {
+                int v = e + k;
+                float n = ww[k] / sqrtf(s2[k]);
+                const f4 vx = { fx[v], fx[v], fx[v], fx[v] }, vy = { fy[v], fy[v], fy[v], fy[v] };
+                f4 sum = (w0[k] * n) * tap4(base, base_c, ix[v], iy[v], ox[hash[i0[k]]], oy[hash[i0[k]]],
+                                            wm, hm, wshift, vx, vy) +
+                         (w1[k] * n) * tap4(base, base_c, ix[v], iy[v], ox[hash[i1[k]]], oy[hash[i1[k]]],
+                                            wm, hm, wshift, vx, vy) +
+                         (w2[k] * n) * tap4(base, base_c, ix[v], iy[v], ox[hash[i2[k]]], oy[hash[i2[k]]],
+                                            wm, hm, wshift, vx, vy);
+                if (!first)
+                    sum += ld4(acc + 4 * (size_t)v);
+                memcpy(acc + 4 * (size_t)v, &sum, sizeof(sum));
+            }
         }
 }
 
@@ -842,23 +945,24 @@ static float displace(struct grid *g, struct disp_frame *df, int nd)
         if (nr == 0)
             continue;
         disp_coords(f, nr, g->run, g->rx, g->ry, g->foot, g->fade, g->unit, g->wv, g->fx, g->fy,
-                    g->off, ext);
+                    g->ix, g->iy, ext);
         {
-            /* the image's texels under this pattern's footprints (first texels floor(x) from
-             * the smallest to the largest x), blended unless they already are for this phase */
+            /* the image's texels under the footprints (first texels floor(x) from the smallest
+             * to the largest x, then up to a tile further for the taps' offsets), blended
+             * unless they already are for this phase */
             int xl = floor_int(ext[0]), yl = floor_int(ext[2]);
-            int mx = floor_int(ext[1]) - xl + 1, my = floor_int(ext[3]) - yl + 1;
+            int mx = floor_int(ext[1]) - xl + 1 + f->wm, my = floor_int(ext[3]) - yl + 1 + f->hm;
             xl &= f->wm;
             yl &= f->hm;
             if (!box_blended(f->im, xl, mx, yl, my))
                 blend_box(f->im, xl, mx, yl, my);
         }
         if (j == 0)
-            disp_fetch(f->data, f->stride, nr, g->run, g->wv, g->fx, g->fy,
-                       g->off, g->acc, 1);
+            disp_fetch(f, g->hash, nr, g->run, g->rx, g->ry, g->wv, g->fx, g->fy, g->ix, g->iy,
+                       g->acc, 1);
         else
-            disp_fetch(f->data, f->stride, nr, g->run, g->wv, g->fx, g->fy,
-                       g->off, g->acc, 0);
+            disp_fetch(f, g->hash, nr, g->run, g->rx, g->ry, g->wv, g->fx, g->fy, g->ix, g->iy,
+                       g->acc, 0);
     }
     return df[top].foot_zero;
 }
@@ -954,13 +1058,26 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
         int lev = mip_level(g->foot[k] * f->lev_k, top);
         double x = f->mx0[lev] + g->rx[k] * f->mk[lev];
         double y = f->my0[lev] + g->ry[k] * f->mk[lev];
-        f4 m, q;
-        sample_f4x2(&p->slope_f[lev], &p->wc_f[lev], x, y, &m, &q);
-        f4 mm = __builtin_shufflevector(m, m, 0, 1, 0, 1);
-        f4 acc = ld4(vx + GRID_A_SLOPE) + max4(m - mm * mm * var_lanes, var_floor);
+        double lw = p->slope_f[lev].w;
+        struct detile_taps t;
+        detile_at(&f->dt, g->rx[k], g->ry[k], &t);
+        /* three taps blended (detile.h): means by w_j, variances by w_j^2, the foam memory's
+         * deviation from its mean */
+        f4 acc = ld4(vx + GRID_A_SLOPE);
+        float km = p->k_mean;
+        for (int j = 0; j < 3; j++) {
+            f4 m, q;
+            float w = t.w[j];
+            f4 wl = { w, w, w * w, w * w };
+            sample_f4x2(&p->slope_f[lev], &p->wc_f[lev], x + t.du[j] * lw, y + t.dv[j] * lw,
+                        &m, &q);
+            f4 mm = __builtin_shufflevector(m, m, 0, 1, 0, 1);
+            acc += wl * max4(m - mm * mm * var_lanes, var_floor);
+            km += w * (q[0] - p->k_mean);
+            vx[GRID_A_K + 1] += w * w * maxf(q[1] - q[0] * q[0], 0.0f);
+        }
         memcpy(vx + GRID_A_SLOPE, &acc, sizeof(acc));
-        vx[GRID_A_K] += q[0];
-        vx[GRID_A_K + 1] += maxf(q[1] - q[0] * q[0], 0.0f);
+        vx[GRID_A_K] += km;
     }
 }
 
@@ -1459,6 +1576,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             d->im = &p->disp_f;
             d->data = p->disp_f.data;
             d->lambda_m = p->lambda_m;
+            detile_frame_set(&d->dt, g->hash, i, p->inv_l, cam);
             /* a block is skipped from a hair above lambda / Nmin, where the weight is 0 (the
              * exact per-vertex weight decides the rest) */
             d->foot_zero = p->lambda_m / FILTER_NMIN * (1.0f + 1e-5f);
@@ -1475,6 +1593,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
         if (p->cpu) {
             int top = p->levels - 1, lo, hi;
             f->p = p;
+            detile_frame_set(&f->dt, g->hash, i, p->inv_l, cam);
             f->lev_k = (float)p->slope->width * (float)p->inv_l;
             lo = mip_level(g->foot_lo * f->lev_k, top);
             hi = mip_level(g->foot_hi * f->lev_k, top);

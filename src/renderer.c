@@ -25,6 +25,7 @@
 #include "shader.h"
 #include "sky.h"
 #include "stream.h"
+#include "detile.h"
 
 #define SKY_MAP_SIZE 256
 #define FRESNEL_FALLBACK 64
@@ -37,7 +38,8 @@ enum ocean_uniform {
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_SUN,
-    OU_HAZE_TAU_RATIO, OU_COUNT
+    OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
+    OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -47,7 +49,8 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
-    "haze_sun", "haze_tau_ratio"
+    "haze_sun", "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
+    "slope_mean"
 };
 
 enum sky_uniform {
@@ -99,12 +102,14 @@ static const struct shader_attrib ocean_attribs[A_COUNT] = {
 /* Vertex-texture-fetch grid (ocean.vert VTF_PATTERNS): its uniforms, per pattern. */
 enum vtf_uniform {
     VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_ROWS, VU_MARGIN, VU_STEP, VU_SCALE, VU_BIAS,
-    VU_PATTERN, VU_A0, VU_B0, VU_A1, VU_B1, VU_A2, VU_B2, VU_A3, VU_B3, VU_COUNT
+    VU_PATTERN, VU_A0, VU_B0, VU_A1, VU_B1, VU_A2, VU_B2, VU_A3, VU_B3, VU_DETILE_TEX,
+    VU_DETILE_ATLAS, VU_DISP_CELL, VU_COUNT
 };
 static const char *const vtf_uniform_names[VU_COUNT] = {
     "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_rows", "grid_margin",
     "grid_step", "disp_scale", "disp_bias", "disp_pattern", "disp_a0", "disp_b0", "disp_a1",
-    "disp_b1", "disp_a2", "disp_b2", "disp_a3", "disp_b3"
+    "disp_b1", "disp_a2", "disp_b2", "disp_a3", "disp_b3", "detile_tex", "detile_atlas_v",
+    "disp_cell"
 };
 static const struct shader_attrib sky_attribs[1] = { { "a_ndc", 0 } };
 
@@ -175,6 +180,7 @@ struct renderer {
     const struct swell_table *fresnel;
     uint8_t *scratch;                 /* derived textures are built here */
     struct swell_table fresnel_own;   /* built here only when the tables lack one */
+    int atlas_w, atlas_h;             /* the Fresnel textures' atlas (fresnel_atlas) */
     int nfs;                          /* patterns shaded from textures, largest first */
     int nwc;                          /* leading slots whose whitecaps are fetched (high) */
     unsigned cpu_mask;                /* patterns resolved per vertex */
@@ -418,10 +424,11 @@ static int choose_vtf(const struct renderer *r)
     GLint combined = 0;
     int n = r->t->patterns;
     if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask ||
-        r->gpu->caps.vertex_texture_units < 2 * n)
+        r->gpu->caps.vertex_texture_units < 2 * n + 1)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
-    if (combined < UNIT_PATTERNS + r->nfs + r->nwc + 2 * n)
+    /* a unit per loop frame of every pattern and one for the lattice hash (detile.h) */
+    if (combined < UNIT_PATTERNS + r->nfs + r->nwc + 2 * n + 1)
         return 0;
     for (int i = 0; i < n; i++) {
         const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);
@@ -530,6 +537,41 @@ static void sea_light(const struct renderer *r, float sun[3], float sea[3], floa
  * pixel). Both are linear in the filtered texels, so filtering the sum is filtering each; the
  * pass is then one multiply-add (on llvmpipe's emulated fp16, gles2-min low 19.3 -> 17.7 ms at
  * the calm surface). Sums over 1 are white on screen either way. */
+/* The Fresnel textures are an atlas (detile.h): the F x F Fresnel texels in rows [0, F), row F a
+ * copy of row F - 1 (a bilinear lookup at the disc's edge, fresnel_v_scale, reads no hash), the
+ * lattice hash's cells (detile_cell_table) in rows [F + 1, F + 1 + DETILE_N), columns
+ * [0, DETILE_N); POT. ocean.frag reads both through one unit: gles2-min's 8 are all in use. */
+static void atlas_size(const struct swell_table *fr, int *w, int *h)
+{
+    int need = fr->height + 1 + DETILE_N;
+    *w = fr->width > DETILE_N ? fr->width : DETILE_N;
+    for (*h = 1; *h < need; *h *= 2)
+        ;
+}
+
+/* out (atlas_w x atlas_h RGBA8) holds the Fresnel rows; add the guard row and the hash. */
+static void atlas_finish(const struct renderer *r, uint8_t *out)
+{
+    const struct swell_table *fr = r->fresnel;
+    size_t row = 4 * (size_t)r->atlas_w;
+    static uint8_t cells[4 * DETILE_N * DETILE_N];   /* the same bytes for every renderer */
+    memset(out + row * (size_t)fr->height, 0, row * (size_t)(r->atlas_h - fr->height));
+    for (int y = 0; r->atlas_w > fr->width && y < fr->height; y++)   /* a guard column too */
+        memcpy(out + row * (size_t)y + 4 * (size_t)fr->width,
+               out + row * (size_t)y + 4 * (size_t)(fr->width - 1), 4);
+    memcpy(out + row * (size_t)fr->height, out + row * (size_t)(fr->height - 1), row);
+    detile_cell_table(cells);
+    for (int y = 0; y < DETILE_N; y++)
+        memcpy(out + row * (size_t)(fr->height + 1 + y), cells + 4 * DETILE_N * y, 4 * DETILE_N);
+}
+
+static int upload_atlas(const struct renderer *r, GLuint tex, uint8_t *atlas,
+                        struct swell_err *err)
+{
+    atlas_finish(r, atlas);
+    return upload_single(tex, r->atlas_w, r->atlas_h, atlas, "renderer: Fresnel upload", err);
+}
+
 static int upload_fresnel_sun(struct renderer *r, struct swell_err *err)
 {
     const struct swell_table *fr = r->fresnel;
@@ -551,12 +593,13 @@ static int upload_fresnel_sun(struct renderer *r, struct swell_err *err)
             vb[c] = fr->bias[c] + fr->scale[c] * px[c] / 255.0;
         d = fmax(-vb[0] * l[0] - vb[1] * l[1] + vb[2] * l[2], 0.0);
         float phong = tone_map_1(glint * (float)pow(d, 512.0)), f = (float)px[3] / 255.0f;
+        uint8_t *o = r->scratch + 4 * ((i / (size_t)fr->width) * (size_t)r->atlas_w +
+                                       i % (size_t)fr->width);
         for (int c = 0; c < 3; c++)
-            r->scratch[4 * i + c] = unorm8((1.0f - f) * sea_d[c] + phong * sun_d[c]);
-        r->scratch[4 * i + 3] = px[3];
+            o[c] = unorm8((1.0f - f) * sea_d[c] + phong * sun_d[c]);
+        o[3] = px[3];
     }
-    return upload_single(r->fresnel_sun_tex, fr->width, fr->height, r->scratch,
-                         "renderer: Fresnel-sun upload", err);
+    return upload_atlas(r, r->fresnel_sun_tex, r->scratch, err);
 }
 
 static int create_disp_textures(struct renderer *r, struct swell_err *err)
@@ -607,6 +650,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
     const struct grid_projection *p = &r->proj;
     float sc[SWELL_MAX_PATTERNS][4] = { { 0 } }, bi[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float pat[SWELL_MAX_PATTERNS][4] = { { 0 } }, v[3][3];
+    float cell[SWELL_MAX_PATTERNS][2] = { { 0 } };
     int w = r->d.grid_w, h = r->d.grid_h;
     for (int c = 0; c < 3; c++) {
         v[0][c] = (float)p->fwd[c];
@@ -625,7 +669,18 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
         for (int f = 0; f < 2; f++)
             bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * i + f,
                      r->disp_tex[i][r->disp_ab[i][f]], u[VU_A0 + 2 * i + f]);
+        float sh[3];
+        detile_camera_shift(i, cam->pos[0], cam->pos[1], 1.0 / pi->size_m, sh);
+        cell[i][0] = sh[0];
+        cell[i][1] = sh[1];
     }
+    /* the atlas's hash on the unit after the displacement's (choose_vtf counts it) */
+    bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
+             r->d.quality == QUALITY_HIGH ? r->fresnel_tex : r->fresnel_sun_tex,
+             u[VU_DETILE_TEX]);
+    glUniform4f(u[VU_DETILE_ATLAS], 1.0f / (float)r->atlas_w, 1.0f / (float)r->atlas_h,
+                (float)(r->fresnel->height + 1) / (float)r->atlas_h, 0.0f);
+    glUniform2fv(u[VU_DISP_CELL], SWELL_MAX_PATTERNS, &cell[0][0]);
     glUniform3fv(u[VU_FWD], 1, v[0]);
     glUniform3fv(u[VU_RIGHT], 1, v[1]);
     glUniform3fv(u[VU_UP], 1, v[2]);
@@ -651,20 +706,24 @@ static int create_textures(struct renderer *r, struct swell_err *err)
             return rc;
         fr = &r->fresnel_own;
     }
-    if (r->d.quality == QUALITY_HIGH &&
-        ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
-                                  "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
-         (rc = upload_single(r->fresnel_tex, fr->width, fr->height, fr->data,
-                             "renderer: Fresnel upload", err))))
-        return rc;
     r->fresnel = fr;
+    atlas_size(fr, &r->atlas_w, &r->atlas_h);
     if ((rc = sky_bake(r->d.sun_elev_deg, r->d.sun_azim_deg, SKY_MAP_SIZE, &r->sky, err)))
         return rc;
     size_t scratch = sky_level_offset(&r->sky, r->sky.levels);
-    if (scratch < 4 * (size_t)fr->width * fr->height)
-        scratch = 4 * (size_t)fr->width * fr->height;
+    if (scratch < 4 * (size_t)r->atlas_w * r->atlas_h)
+        scratch = 4 * (size_t)r->atlas_w * r->atlas_h;
     if (!(r->scratch = malloc(scratch)))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for derived textures");
+    if (r->d.quality == QUALITY_HIGH) {
+        for (int y = 0; y < fr->height; y++)
+            memcpy(r->scratch + 4 * (size_t)r->atlas_w * y, fr->data + 4 * (size_t)fr->width * y,
+                   4 * (size_t)fr->width);
+        if ((rc = gpu_texture_create(r->gpu, r->atlas_w, r->atlas_h, 1, FORMAT_RGBA8, 0,
+                                     "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
+            (rc = upload_atlas(r, r->fresnel_tex, r->scratch, err)))
+            return rc;
+    }
     update_sky_constants(r);
     if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
                            "renderer: display sky map", &r->sky_display_tex, err)) ||
@@ -679,7 +738,7 @@ static int create_textures(struct renderer *r, struct swell_err *err)
                                "renderer: sky map", &r->sky_tex, err)) ||
             (rc = upload_sky(r, &r->sky, err)))
             return rc;
-    } else if ((rc = gpu_texture_create(r->gpu, fr->width, fr->height, 1, FORMAT_RGBA8, 0,
+    } else if ((rc = gpu_texture_create(r->gpu, r->atlas_w, r->atlas_h, 1, FORMAT_RGBA8, 0,
                                         "renderer: Fresnel-sun texture", &r->fresnel_sun_tex,
                                         err)) ||
                (rc = upload_fresnel_sun(r, err))) {
@@ -1075,6 +1134,8 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     float ss[SWELL_MAX_PATTERNS][4] = { { 0 } }, sb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float cs[4] = { 0.0f, 0.0f, 0.0f, 0.0f }, ck[2] = { 0.0f, 0.0f };
+    float dsh[SWELL_MAX_PATTERNS][3] = { { 0 } }, wmu[SWELL_MAX_PATTERNS] = { 0 };
+    float smu[SWELL_MAX_PATTERNS][2] = { { 0 } };
     float sun[3], sea[3], foam[3], e = r->exposure;
     float unres[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
     for (int s = 0; s < r->nfs; s++) {
@@ -1088,6 +1149,11 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         }
         grid_uv_offset(r->t, sl->pattern, cam, off[s]);
         inv[s] = 1.0f / r->t->pattern[sl->pattern].size_m;
+        detile_camera_shift(sl->pattern, cam->pos[0], cam->pos[1],
+                            1.0 / r->t->pattern[sl->pattern].size_m, dsh[s]);
+        wmu[s] = sl->top_k[0];
+        smu[s][0] = sl->top_slope[0];
+        smu[s][1] = sl->top_slope[1];
         memcpy(ss[s], sl->slope->scale, sizeof(ss[s]));
         memcpy(sb[s], sl->slope->bias, sizeof(sb[s]));
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
@@ -1108,6 +1174,13 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform4fv(u[OU_WC_BIAS], SWELL_MAX_PATTERNS, &wb[0][0]);
     glUniform4fv(u[OU_CONST_SLOPE], 1, cs);
     glUniform2fv(u[OU_CONST_K], 1, ck);
+    glUniform3fv(u[OU_DETILE_SHIFT], SWELL_MAX_PATTERNS, &dsh[0][0]);
+    glUniform1fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, wmu);
+    glUniform2fv(u[OU_SLOPE_MEAN], SWELL_MAX_PATTERNS, &smu[0][0]);
+    glUniform4f(u[OU_DETILE_ATLAS], 1.0f / (float)r->atlas_w, 1.0f / (float)r->atlas_h,
+                (float)(r->fresnel->height + 1) / (float)r->atlas_h, 0.0f);
+    glUniform2f(u[OU_FRESNEL_V], (float)r->fresnel->width / (float)r->atlas_w,
+                (float)r->fresnel->height / (float)r->atlas_h);
     bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
     glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));
@@ -1154,9 +1227,9 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         tot[1] += m[3];
         var += fmaxf(m[2], m[3]);
         if (s < k) {
-            /* high adds dequantised slopes, low only scale x texel: it carries the biases */
-            dso[0] += (r->d.quality == QUALITY_HIGH ? 0.0f : sb[s][0]) - m[0];
-            dso[1] += (r->d.quality == QUALITY_HIGH ? 0.0f : sb[s][1]) - m[1];
+            /* both add dequantised slopes, blended (detile.h: the bias by the taps' weights) */
+            dso[0] -= m[0];
+            dso[1] -= m[1];
         }
     }
     lin[2] = fmaxf(sqrtf(var), 0.01f);

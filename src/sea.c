@@ -1,5 +1,6 @@
 /* sea.c - the sea on the CPU (sea.h). */
 #include <math.h>
+#include "detile.h"
 #include "sea.h"
 #include "stream.h"
 
@@ -39,13 +40,19 @@ void sea_displacement(const struct swell_tables *t, double x, double y, double t
         if (!tb || tb->format != FORMAT_RGBA8 || !tb->data || !(l > 0.0))
             continue;
         stream_loop_phase(t_s, tables_pattern_period(t, i), tb->layers, &ph);
-        /* uv = world / L (grid_uv_offset + rest / L); texel centres at (i + 0.5) / n */
-        double u = x / l * tb->width - 0.5, v = y / l * tb->height - 0.5;
+        /* uv = world / L (grid_uv_offset + rest / L), read at three random offsets blended
+         * (detile.h); texel centres at (i + 0.5) / n */
+        struct detile_taps tp;
         double wgt = (double)ph.w / STREAM_W_ONE;
-        sample3(tb, ph.f0, u, v, a);
-        sample3(tb, ph.f1, u, v, b);
-        for (int c = 0; c < 3; c++)
-            out[c] += a[c] + (b[c] - a[c]) * wgt;
+        detile_taps(i, x / l, y / l, &tp);
+        for (int j = 0; j < 3; j++) {
+            double u = (x / l + tp.du[j]) * tb->width - 0.5;
+            double v = (y / l + tp.dv[j]) * tb->height - 0.5;
+            sample3(tb, ph.f0, u, v, a);
+            sample3(tb, ph.f1, u, v, b);
+            for (int c = 0; c < 3; c++)
+                out[c] += tp.w[j] * (a[c] + (b[c] - a[c]) * wgt);
+        }
     }
 }
 
