@@ -11,6 +11,33 @@
 #define DETILE_N 128.0              // the hash's period, cells
 #define DETILE_OFFSETS 8.0          // an offset is (b >> 3, b & 7) / 8 tiles, b the hash byte
 
+// uv's lattice cell c (detile.h), the position f in it, and the atlas coordinate of its hash
+// texel (sh: the cell shift of detile_camera_shift; atlas: 1 / the atlas size, the hash rows' v;
+// renderer.c atlas_hash_frame). Integer cell arithmetic below DETILE_N + a wrapped uv: exact
+// in fp16.
+vec2 detile_cell(vec2 uv, vec2 sh, vec4 atlas, out vec2 c, out vec2 f)
+{
+    vec2 q = uv * DETILE_CELLS;
+    c = floor(q);
+    f = q - c;
+    vec2 hc = c + sh;
+    hc -= DETILE_N * floor(hc * (1.0 / DETILE_N));
+    return (hc + 0.5) * atlas.xy + vec2(0.0, atlas.z);
+}
+
+// The hash bytes of f's triangle's corners (0, 0), the middle vertex, (1, 1) from its cell's
+// texel h, and their barycentric weights normalised to sum w^2 = 1.
+vec3 detile_bytes(vec4 h, vec2 f)
+{
+    return vec3(h.r, f.y > f.x ? h.b : h.g, h.a);
+}
+
+vec3 detile_weights(vec2 f)
+{
+    vec3 w = vec3(1.0 - max(f.x, f.y), abs(f.x - f.y), min(f.x, f.y));
+    return w * inversesqrt(dot(w, w));
+}
+
 // The offsets of three hash bytes t (as fetched: b / 255, b < 64), x and y: 255 t is within
 // 0.04 of b in fp16, and b's two 3-bit halves come out exact (test_detile).
 void detile_offsets(vec3 t, out vec3 ox, out vec3 oy)

@@ -102,22 +102,17 @@ float g_kvar;
 // offsets of its lattice triangle, with weights g_tw (normalised: sum g_tw^2 = 1) and uv
 // offsets (g_ox, g_oy) (detile_offsets). The taps are ordered by their vertex's colour (x + y) mod 3, so a
 // tap's offset changes only where its weight is 0 and the implicit LOD of its fetch (no
-// gradients on gles2-min) stays its neighbours'. Integer cell arithmetic below DETILE_N + a
-// wrapped uv: exact in fp16.
+// gradients on gles2-min) stays its neighbours'.
 vec3 g_tw;
 vec3 g_ox;
 vec3 g_oy;
 
 void detile(vec2 uv, vec3 sh)
 {
-    vec2 q = uv * DETILE_CELLS;
-    vec2 c = floor(q);
-    vec2 f = q - c;
-    vec2 hc = c + sh.xy;
-    hc -= DETILE_N * floor(hc * (1.0 / DETILE_N));
-    vec4 h = texture2D(fresnel_tex, (hc + 0.5) * detile_atlas.xy + vec2(0.0, detile_atlas.z));
-    vec3 t = vec3(h.r, f.y > f.x ? h.b : h.g, h.a);
-    vec3 w = vec3(1.0 - max(f.x, f.y), abs(f.x - f.y), min(f.x, f.y));
+    vec2 c, f;
+    vec4 h = texture2D(fresnel_tex, detile_cell(uv, sh.xy, detile_atlas, c, f));
+    vec3 t = detile_bytes(h, f);
+    vec3 w = detile_weights(f);
     // corner (0, 0) has colour s, the middle vertex s + 1, corner (1, 1) s + 2
     float s = c.x + c.y + sh.z;
     s -= 3.0 * floor((s + 0.5) * (1.0 / 3.0));
@@ -126,7 +121,7 @@ void detile(vec2 uv, vec3 sh)
     float a = step(0.5, s), b = step(1.5, s);
     t = mix(mix(t, t.zxy, a), t.yzx, b);
     w = mix(mix(w, w.zxy, a), w.yzx, b);
-    g_tw = w * inversesqrt(dot(w, w));
+    g_tw = w;
     detile_offsets(t, g_ox, g_oy);
 }
 

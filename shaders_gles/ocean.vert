@@ -86,17 +86,11 @@ vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
 {
     float u = clamp((disp_pattern[i].w / foot - 2.0) / 2.0, 0.0, 1.0);
     vec2 uv = disp_pattern[i].xy + rest * disp_pattern[i].z;
-    vec2 q = uv * DETILE_CELLS;
-    vec2 c = floor(q);
-    vec2 f = q - c;
-    vec2 hc = c + disp_cell[i];
-    hc -= DETILE_N * floor(hc * (1.0 / DETILE_N));
-    vec4 h = texture2DLod(detile_tex, (hc + 0.5) * detile_atlas_v.xy + vec2(0.0, detile_atlas_v.z),
-                          0.0);
+    vec2 c, f;
+    vec4 h = texture2DLod(detile_tex, detile_cell(uv, disp_cell[i], detile_atlas_v, c, f), 0.0);
     vec3 ox, oy;
-    detile_offsets(vec3(h.r, f.y > f.x ? h.b : h.g, h.a), ox, oy);
-    vec3 w = vec3(1.0 - max(f.x, f.y), abs(f.x - f.y), min(f.x, f.y));
-    w *= inversesqrt(dot(w, w));
+    detile_offsets(detile_bytes(h, f), ox, oy);
+    vec3 w = detile_weights(f);
     vec3 d = w.x * disp_tap(a, b, i, uv + vec2(ox.x, oy.x)) +
              w.y * disp_tap(a, b, i, uv + vec2(ox.y, oy.y)) +
              w.z * disp_tap(a, b, i, uv + vec2(ox.z, oy.z));

@@ -28,11 +28,11 @@ void detile_hash_table(uint8_t *out)
         out[i] = hash_byte(i);
 }
 
-void detile_cell_table(uint8_t *out)
+void detile_cell_table(uint8_t *out, size_t stride)
 {
     for (int y = 0; y < DETILE_N; y++)
         for (int x = 0; x < DETILE_N; x++) {
-            uint8_t *p = out + 4 * (y * DETILE_N + x);
+            uint8_t *p = out + (size_t)y * stride + 4 * (size_t)x;
             p[0] = detile_hash(x, y);
             p[1] = detile_hash(x + 1, y);
             p[2] = detile_hash(x, y + 1);
@@ -40,12 +40,11 @@ void detile_cell_table(uint8_t *out)
         }
 }
 
-void detile_taps_cell(const uint8_t *hash, int pattern, long cx, long cy, float fx, float fy,
+void detile_taps_cell(const uint8_t *hash, long hx, long hy, float fx, float fy,
                       struct detile_taps *t)
 {
     unsigned m = DETILE_N - 1;
-    unsigned x = ((unsigned)cx + DETILE_SHIFT_X * (unsigned)pattern) & m;
-    unsigned y = ((unsigned)cy + DETILE_SHIFT_Y * (unsigned)pattern) & m;
+    unsigned x = (unsigned)hx & m, y = (unsigned)hy & m;
     unsigned x1 = (x + 1) & m, y1 = (y + 1) & m, up = fy > fx;
     unsigned mid = up ? y1 * DETILE_N + x : y * DETILE_N + x1;
     uint8_t h[3];
@@ -75,7 +74,8 @@ void detile_taps(int pattern, double u, double v, struct detile_taps *t)
     double qx = u * DETILE_CELLS, qy = v * DETILE_CELLS, fx = floor(qx), fy = floor(qy);
     /* the cell index modulo the hash period, from a value exact in double */
     long cx = (long)fmod(fx, (double)DETILE_N), cy = (long)fmod(fy, (double)DETILE_N);
-    detile_taps_cell(NULL, pattern, cx, cy, (float)(qx - fx), (float)(qy - fy), t);
+    detile_taps_cell(NULL, cx + DETILE_SHIFT_X * pattern, cy + DETILE_SHIFT_Y * pattern,
+                     (float)(qx - fx), (float)(qy - fy), t);
 }
 
 static double wrap(double x, double n)

@@ -39,6 +39,7 @@
 #ifndef SWELL_DETILE_H
 #define SWELL_DETILE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #define DETILE_CELLS 2            /* lattice cells per tile, per axis */
@@ -56,8 +57,8 @@ uint8_t detile_hash(int x, int y);
 void detile_hash_table(uint8_t *out);
 
 /* Per cell (x, y) of the DETILE_N x DETILE_N hash, RGBA8: the bytes of its corners (x, y),
- * (x + 1, y), (x, y + 1), (x + 1, y + 1); out holds 4 DETILE_N^2 bytes. */
-void detile_cell_table(uint8_t *out);
+ * (x + 1, y), (x, y + 1), (x + 1, y + 1); row y at out + y stride (stride >= 4 DETILE_N bytes). */
+void detile_cell_table(uint8_t *out, size_t stride);
 
 /* The three taps of pattern `pattern` at uv (tiles, world / L: any magnitude, in double so a
  * day's drift keeps its cell): weights w[j] (normalised, sum w^2 = 1) and offsets du[j], dv[j]
@@ -68,10 +69,11 @@ struct detile_taps {
 };
 void detile_taps(int pattern, double u, double v, struct detile_taps *t);
 
-/* The same for a point given as a cell's integer coordinates (cx, cy) and the position (fx, fy)
- * in [0, 1) inside it: what the camera-relative stages use. hash: detile_hash_table's, or NULL
- * (hashed per call). */
-void detile_taps_cell(const uint8_t *hash, int pattern, long cx, long cy, float fx, float fy,
+/* The same for a point given by its hash cell (hx, hy) (its lattice cell plus the pattern's
+ * shift, any integers: taken modulo DETILE_N) and the position (fx, fy) in [0, 1) inside it:
+ * what the camera-relative stages use, with detile_camera_shift. hash: detile_hash_table's, or
+ * NULL (hashed per call). */
+void detile_taps_cell(const uint8_t *hash, long hx, long hy, float fx, float fy,
                       struct detile_taps *t);
 
 /* For the shaders, which take the cell of a camera-relative uv (frac(camera / L) + rest / L):

@@ -67,27 +67,27 @@ struct f4_image {
 };
 
 /* One frame's constants of a pattern's lattice (detile.h): a rest point's cell coordinates are
- * q = q0 + rest qk (camera-relative, float), its cell index floor(q) + cell0 (the camera's
- * cell modulo DETILE_N, from double); offsets in texels of an image of nx x ny texels. */
+ * q = q0 + rest qk (camera-relative, float), its hash cell floor(q) + sh (the shaders' shift,
+ * detile_camera_shift: the camera's cell and the pattern's shift modulo DETILE_N). */
 struct detile_frame {
     const uint8_t *hash;      /* detile_hash_table's (the grid's copy) */
-    int pattern;
     float q0x, q0y, qk;
-    long cell0x, cell0y;
+    int shx, shy;
 };
 
 static void detile_frame_set(struct detile_frame *f, const uint8_t *hash, int pattern,
                              double inv_l, const struct camera *cam)
 {
+    float sh[3];
     f->hash = hash;
-    f->pattern = pattern;
     f->qk = (float)(inv_l * DETILE_CELLS);
     double ux = cam->pos[0] * inv_l, uy = cam->pos[1] * inv_l;
     /* cell q = DETILE_CELLS (floor(cam / L) + frac(cam / L) + rest / L) */
     f->q0x = (float)((ux - floor(ux)) * DETILE_CELLS);
     f->q0y = (float)((uy - floor(uy)) * DETILE_CELLS);
-    f->cell0x = (long)fmod(floor(ux) * DETILE_CELLS, (double)DETILE_N);
-    f->cell0y = (long)fmod(floor(uy) * DETILE_CELLS, (double)DETILE_N);
+    detile_camera_shift(pattern, cam->pos[0], cam->pos[1], inv_l, sh);
+    f->shx = (int)sh[0];
+    f->shy = (int)sh[1];
 }
 
 static inline void detile_at(const struct detile_frame *f, float rx, float ry,
@@ -99,8 +99,8 @@ static inline void detile_at(const struct detile_frame *f, float rx, float ry,
     int ix = (int)qx, iy = (int)qy;
     ix -= qx < (float)ix;
     iy -= qy < (float)iy;
-    detile_taps_cell(f->hash, f->pattern, (long)ix + f->cell0x, (long)iy + f->cell0y,
-                     qx - (float)ix, qy - (float)iy, t);
+    detile_taps_cell(f->hash, (long)ix + f->shx, (long)iy + f->shy, qx - (float)ix,
+                     qy - (float)iy, t);
 }
 
 struct grid_pattern {
@@ -776,10 +776,10 @@ static void block_foot(int n, const float *restrict foot, float *restrict out)
 }
 
 /* For the vertices of the nr runs [run[2r], run[2r + 1]) (whole blocks): the weights of
- * Bruneton eq. 2 for each vertex's cell of size foot (times the fade), the texel
- * coordinates x = x0 + rest_x kx in float, floored (rest positions are camera-relative floats and x0 a
- * wrapped offset: float keeps what the inputs hold), and the byte offsets of the bilinear
- * footprints. By quads: a fixed loop of 4 over restrict-qualified arrays is what -O2's
+ * Bruneton eq. 2 for each vertex's cell of size foot (times the fade), the texel coordinates
+ * x = x0 + rest_x kx in float, floored (rest positions are camera-relative floats and x0 a
+ * wrapped offset: float keeps what the inputs hold), and the first texels (oix, oiy) of the
+ * bilinear footprints. By quads: a fixed loop of 4 over restrict-qualified arrays is what -O2's
  * vectorisers turn into straight vector code. */
 static void disp_coords(const struct disp_frame *f, int nr, const int *restrict run,
                                const float *restrict rx, const float *restrict ry,
@@ -872,9 +872,7 @@ static void disp_fetch(const struct disp_frame *f, const uint8_t *restrict hash,
 {
     const char *base = (const char *)f->data, *base_c = base + f->stride;
     const struct detile_frame *d = &f->dt;
-    const int m = DETILE_N - 1;
-    const int shx = (int)((d->cell0x + DETILE_SHIFT_X * d->pattern) & m);
-    const int shy = (int)((d->cell0y + DETILE_SHIFT_Y * d->pattern) & m);
+    const int m = DETILE_N - 1, shx = d->shx, shy = d->shy;
     const int wm = f->wm, hm = f->hm, wshift = f->wshift;
     const f4 one = { 1.0f, 1.0f, 1.0f, 1.0f };
     /* each hash byte's offset in texels, (h >> 3, h & 7) eighths of the tile (tables are

@@ -180,7 +180,7 @@ struct renderer {
     const struct swell_table *fresnel;
     uint8_t *scratch;                 /* derived textures are built here */
     struct swell_table fresnel_own;   /* built here only when the tables lack one */
-    int atlas_w, atlas_h;             /* the Fresnel textures' atlas (fresnel_atlas) */
+    int atlas_w, atlas_h;             /* the Fresnel textures' atlas (atlas_size) */
     int nfs;                          /* patterns shaded from textures, largest first */
     int nwc;                          /* leading slots whose whitecaps are fetched (high) */
     unsigned cpu_mask;                /* patterns resolved per vertex */
@@ -538,7 +538,7 @@ static void sea_light(const struct renderer *r, float sun[3], float sea[3], floa
  * pass is then one multiply-add (on llvmpipe's emulated fp16, gles2-min low 19.3 -> 17.7 ms at
  * the calm surface). Sums over 1 are white on screen either way. */
 /* The Fresnel textures are an atlas (detile.h): the F x F Fresnel texels in rows [0, F), row F a
- * copy of row F - 1 (a bilinear lookup at the disc's edge, fresnel_v_scale, reads no hash), the
+ * copy of row F - 1 (a bilinear lookup at the disc's edge, fresnel_uv_scale, reads no hash), the
  * lattice hash's cells (detile_cell_table) in rows [F + 1, F + 1 + DETILE_N), columns
  * [0, DETILE_N); POT. ocean.frag reads both through one unit: gles2-min's 8 are all in use. */
 static void atlas_size(const struct swell_table *fr, int *w, int *h)
@@ -554,15 +554,22 @@ static void atlas_finish(const struct renderer *r, uint8_t *out)
 {
     const struct swell_table *fr = r->fresnel;
     size_t row = 4 * (size_t)r->atlas_w;
-    static uint8_t cells[4 * DETILE_N * DETILE_N];   /* the same bytes for every renderer */
     memset(out + row * (size_t)fr->height, 0, row * (size_t)(r->atlas_h - fr->height));
     for (int y = 0; r->atlas_w > fr->width && y < fr->height; y++)   /* a guard column too */
         memcpy(out + row * (size_t)y + 4 * (size_t)fr->width,
                out + row * (size_t)y + 4 * (size_t)(fr->width - 1), 4);
     memcpy(out + row * (size_t)fr->height, out + row * (size_t)(fr->height - 1), row);
-    detile_cell_table(cells);
-    for (int y = 0; y < DETILE_N; y++)
-        memcpy(out + row * (size_t)(fr->height + 1 + y), cells + 4 * DETILE_N * y, 4 * DETILE_N);
+    detile_cell_table(out + row * (size_t)(fr->height + 1), row);
+}
+
+/* Where the atlas's hash is, for ocean.frag's detile_atlas and ocean.vert's detile_atlas_v:
+ * 1 / its size and the hash rows' origin v. */
+static void atlas_hash_frame(const struct renderer *r, float out[4])
+{
+    out[0] = 1.0f / (float)r->atlas_w;
+    out[1] = 1.0f / (float)r->atlas_h;
+    out[2] = (float)(r->fresnel->height + 1) / (float)r->atlas_h;
+    out[3] = 0.0f;
 }
 
 static int upload_atlas(const struct renderer *r, GLuint tex, uint8_t *atlas,
@@ -678,8 +685,9 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
     bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
              r->d.quality == QUALITY_HIGH ? r->fresnel_tex : r->fresnel_sun_tex,
              u[VU_DETILE_TEX]);
-    glUniform4f(u[VU_DETILE_ATLAS], 1.0f / (float)r->atlas_w, 1.0f / (float)r->atlas_h,
-                (float)(r->fresnel->height + 1) / (float)r->atlas_h, 0.0f);
+    float atlas[4];
+    atlas_hash_frame(r, atlas);
+    glUniform4fv(u[VU_DETILE_ATLAS], 1, atlas);
     glUniform2fv(u[VU_DISP_CELL], SWELL_MAX_PATTERNS, &cell[0][0]);
     glUniform3fv(u[VU_FWD], 1, v[0]);
     glUniform3fv(u[VU_RIGHT], 1, v[1]);
@@ -1177,8 +1185,9 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform3fv(u[OU_DETILE_SHIFT], SWELL_MAX_PATTERNS, &dsh[0][0]);
     glUniform1fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, wmu);
     glUniform2fv(u[OU_SLOPE_MEAN], SWELL_MAX_PATTERNS, &smu[0][0]);
-    glUniform4f(u[OU_DETILE_ATLAS], 1.0f / (float)r->atlas_w, 1.0f / (float)r->atlas_h,
-                (float)(r->fresnel->height + 1) / (float)r->atlas_h, 0.0f);
+    float atlas[4];
+    atlas_hash_frame(r, atlas);
+    glUniform4fv(u[OU_DETILE_ATLAS], 1, atlas);
     glUniform2f(u[OU_FRESNEL_V], (float)r->fresnel->width / (float)r->atlas_w,
                 (float)r->fresnel->height / (float)r->atlas_h);
     bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);

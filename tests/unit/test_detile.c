@@ -142,7 +142,7 @@ static void test_cell_table(void **state)
 {
     (void)state;
     static uint8_t cells[4 * DETILE_N * DETILE_N];
-    detile_cell_table(cells);
+    detile_cell_table(cells, 4 * DETILE_N);
     for (int y = 0; y < DETILE_N; y++)
         for (int x = 0; x < DETILE_N; x++) {
             const uint8_t *p = cells + 4 * (y * DETILE_N + x);
@@ -224,7 +224,7 @@ static void test_shader_stages_agree(void **state)
 {
     (void)state;
     static uint8_t cells[4 * DETILE_N * DETILE_N];
-    detile_cell_table(cells);
+    detile_cell_table(cells, 4 * DETILE_N);
     struct rng r = { 0xfeedbeefu };
     for (int k = 0; k < 20000; k++) {
         int pattern = k & 3;
@@ -264,7 +264,7 @@ static void test_taps_ordered_by_colour(void **state)
 {
     (void)state;
     static uint8_t cells[4 * DETILE_N * DETILE_N];
-    detile_cell_table(cells);
+    detile_cell_table(cells, 4 * DETILE_N);
     struct rng r = { 0xabcdef1u };
     const float sh[3] = { 5.0f, 17.0f, 2.0f }, eps = 1e-3f, cell = 1.0f / DETILE_CELLS;
     for (int k = 0; k < 5000; k++) {
