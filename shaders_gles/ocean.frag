@@ -1,6 +1,6 @@
 // ocean.frag - sea shading (Bruneton 2010 §4-5, Hu 2006 §5, Dupuy 2012 eq. 6-8).
 // validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0 | FS_PATTERNS=2 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 |
-// validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD
+// validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_NO_DETILE | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_NO_DETILE
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
@@ -125,7 +125,16 @@ void detile(vec2 uv, vec3 sh)
     detile_offsets(t, g_ox, g_oy);
 }
 
+#ifdef SWELL_NO_DETILE
+// renderer_desc no_detile: one tap at no offset, full weight; the tile repeats.
+#define DETILE(uv, sh) g_tw = vec3(1.0, 0.0, 0.0)
+#define TAP(tex, uv, j) texture2D(tex, uv)
+#define TAPS(tex, uv) TAP(tex, uv, x), vec4(0.0), vec4(0.0)
+#else
+#define DETILE(uv, sh) detile(uv, sh)
 #define TAP(tex, uv, j) texture2D(tex, uv + vec2(g_ox.j, g_oy.j))
+#define TAPS(tex, uv) TAP(tex, uv, x), TAP(tex, uv, y), TAP(tex, uv, z)
+#endif
 
 #ifdef QUALITY_HIGH
 // The blend of three taps of a moment table (detile.h): means by w_j about the patch's mean m
@@ -151,11 +160,15 @@ void add_whitecap(vec4 b, vec4 sc, float mu, vec4 a0, vec4 a1, vec4 a2)
                                         k2.y - k2.x * k2.x), vec3(0.0)));
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
-#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], TAP(tex, uv, x), TAP(tex, uv, y), TAP(tex, uv, z))
-#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], TAP(tex, uv, x), TAP(tex, uv, y), TAP(tex, uv, z))
+#define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], TAPS(tex, uv))
+#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], TAPS(tex, uv))
 #else
 // The single pass needs the mean slope only.
+#ifdef SWELL_NO_DETILE
+#define SLOPE(i, tex, uv) g_ds += slope_bias[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy
+#else
 #define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i]) + slope_mean[i] + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy)
+#endif
 #endif
 
 void main()

@@ -1,5 +1,5 @@
 // ocean.vert - CPU-displaced sea vertices (gles2-min: no vertex texture fetch). Positions are
-// validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1
+// validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 SWELL_NO_DETILE
 // camera-relative; texture coordinates are a per-pattern offset wrapped on the CPU in double
 // plus the camera-relative rest position over the patch size, so they stay small.
 //
@@ -86,6 +86,9 @@ vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
 {
     float u = clamp((disp_pattern[i].w / foot - 2.0) / 2.0, 0.0, 1.0);
     vec2 uv = disp_pattern[i].xy + rest * disp_pattern[i].z;
+#ifdef SWELL_NO_DETILE
+    vec3 d = disp_tap(a, b, i, uv);     // renderer_desc no_detile: one tap, the tile repeats
+#else
     vec2 c, f;
     vec4 h = texture2DLod(detile_tex, detile_cell(uv, disp_cell[i], detile_atlas_v, c, f), 0.0);
     vec3 ox, oy;
@@ -94,6 +97,7 @@ vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
     vec3 d = w.x * disp_tap(a, b, i, uv + vec2(ox.x, oy.x)) +
              w.y * disp_tap(a, b, i, uv + vec2(ox.y, oy.y)) +
              w.z * disp_tap(a, b, i, uv + vec2(ox.z, oy.z));
+#endif
     return u * u * (3.0 - 2.0 * u) * d;
 }
 #else

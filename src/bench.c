@@ -321,6 +321,7 @@ int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell
     copy_label(out->scene, sizeof out->scene, d->scene);
     copy_label(out->quality, sizeof out->quality, d->quality);
     copy_label(out->geometry, sizeof out->geometry, d->geometry);
+    copy_label(out->detile, sizeof out->detile, d->detile ? d->detile : "on");
     copy_label(out->platform, sizeof out->platform, d->platform ? d->platform : d->ph->be->name);
     copy_label(out->tier, sizeof out->tier, gpu_tier_name(d->gpu->caps.tier));
     copy_label(out->path, sizeof out->path,
@@ -407,6 +408,7 @@ int bench_format_json(const struct bench_result *r, char *buf, size_t cap)
     jstr(&b, "tier", r->tier);
     jstr(&b, "quality", r->quality);
     jstr(&b, "geometry", r->geometry);
+    jstr(&b, "detile", r->detile);
     jstr(&b, "path", r->path);
     jstr(&b, "platform", r->platform);
     jstr(&b, "gl_renderer", r->gl_renderer);

@@ -63,10 +63,11 @@ struct bench_desc {
     int frames;                     /* timed frames; default 0 = BENCH_DEFAULT_FRAMES */
     /* labels copied into the result */
     const char *scene, *quality, *geometry, *platform;
+    const char *detile;             /* "on" | "off" (swell --detile); default "on" */
 };
 
 struct bench_result {
-    char scene[64], tier[16], quality[16], geometry[16], path[16], platform[16];
+    char scene[64], tier[16], quality[16], geometry[16], path[16], platform[16], detile[8];
     char gl_renderer[128];
     int width, height, warmup, frames;
     double step_s;

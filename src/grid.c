@@ -70,7 +70,8 @@ struct f4_image {
  * q = q0 + rest qk (camera-relative, float), its hash cell floor(q) + sh (the shaders' shift,
  * detile_camera_shift: the camera's cell and the pattern's shift modulo DETILE_N). */
 struct detile_frame {
-    const uint8_t *hash;      /* detile_hash_table's (the grid's copy) */
+    const uint8_t *hash;      /* detile_hash_table's (the grid's copy); NULL: no lattice, one tap
+                                 at no offset (grid_desc no_detile) */
     float q0x, q0y, qk;
     int shx, shy;
 };
@@ -80,6 +81,8 @@ static void detile_frame_set(struct detile_frame *f, const uint8_t *hash, int pa
 {
     float sh[3];
     f->hash = hash;
+    if (!hash)
+        return;
     f->qk = (float)(inv_l * DETILE_CELLS);
     double ux = cam->pos[0] * inv_l, uy = cam->pos[1] * inv_l;
     /* cell q = DETILE_CELLS (floor(cam / L) + frac(cam / L) + rest / L) */
@@ -93,6 +96,10 @@ static void detile_frame_set(struct detile_frame *f, const uint8_t *hash, int pa
 static inline void detile_at(const struct detile_frame *f, float rx, float ry,
                              struct detile_taps *t)
 {
+    if (!f->hash) {
+        *t = (struct detile_taps){ .w = { 1.0f, 0.0f, 0.0f } };
+        return;
+    }
     float qx = f->q0x + rx * f->qk, qy = f->q0y + ry * f->qk;
     /* floor by conversion (floorf is a call on x86-64's SSE2); |q| < 2^31 where a pattern's
      * eq. 2 weight is not 0 (a cell is half a tile) */
@@ -169,6 +176,7 @@ struct grid {
     int rows;
     struct grid_pattern p[SWELL_MAX_PATTERNS];
     uint8_t hash[DETILE_N * DETILE_N];  /* detile_hash_table */
+    int detile;               /* 0: grid_desc no_detile */
     double crest_m;           /* bound on the summed vertical displacement, m */
     double chop_m;            /* bound on the summed horizontal (choppy) displacement, m */
 };
@@ -424,6 +432,7 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     }
     init_fade(g);
     detile_hash_table(g->hash);
+    g->detile = !d->no_detile;
     g->unit[0] = 0.0f;
     g->unit[1] = 1.0f;
     g->unit[2] = 1e-6f;
@@ -460,8 +469,9 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
                 side = fmaxf(side, fabsf(quantize_decode(p->disp, 1, p->disp->data[k + 1])));
             }
             /* read at three offsets blended (detile.h): at most sqrt(3) times a tap */
-            g->crest_m += DETILE_GAIN_MAX * top;
-            g->chop_m += DETILE_GAIN_MAX * side;
+            float gain = g->detile ? DETILE_GAIN_MAX : 1.0f;
+            g->crest_m += gain * top;
+            g->chop_m += gain * side;
         }
         {
             /* the foam memory's mean: its top level's texels over the loop (detile.h blends
@@ -915,6 +925,24 @@ static void disp_fetch(const struct disp_frame *f, const uint8_t *restrict hash,
         }
 }
 
+/* disp_fetch without the lattice (grid_desc no_detile): one tap at no offset. */
+static void disp_fetch_one(const struct disp_frame *f, int nr, const int *restrict run,
+                           const float *restrict wv, const float *restrict fx,
+                           const float *restrict fy, const int *restrict ix,
+                           const int *restrict iy, float *restrict acc, const int first)
+{
+    const char *base = (const char *)f->data, *base_c = base + f->stride;
+    const int wm = f->wm, hm = f->hm, wshift = f->wshift;
+    for (int r = 0; r < nr; r++)
+        for (int v = run[2 * r]; v < run[2 * r + 1]; v++) {
+            const f4 vx = { fx[v], fx[v], fx[v], fx[v] }, vy = { fy[v], fy[v], fy[v], fy[v] };
+            f4 sum = wv[v] * tap4(base, base_c, ix[v], iy[v], 0, 0, wm, hm, wshift, vx, vy);
+            if (!first)
+                sum += ld4(acc + 4 * (size_t)v);
+            memcpy(acc + 4 * (size_t)v, &sum, sizeof(sum));
+        }
+}
+
 /* Sum the displacement of the nd patterns at df, weighted by Bruneton eq. 2, into acc (a float4
  * per vertex), pattern by pattern over the runs of blocks of VBLK vertices whose smallest
  * footprint gives the pattern a weight > 0. The pattern with the longest wavelength goes first:
@@ -948,14 +976,18 @@ static float displace(struct grid *g, struct disp_frame *df, int nd)
             /* the image's texels under the footprints (first texels floor(x) from the smallest
              * to the largest x, then up to a tile further for the taps' offsets), blended
              * unless they already are for this phase */
+            int on = f->dt.hash != NULL;
             int xl = floor_int(ext[0]), yl = floor_int(ext[2]);
-            int mx = floor_int(ext[1]) - xl + 1 + f->wm, my = floor_int(ext[3]) - yl + 1 + f->hm;
+            int mx = floor_int(ext[1]) - xl + 1 + (on ? f->wm : 0);
+            int my = floor_int(ext[3]) - yl + 1 + (on ? f->hm : 0);
             xl &= f->wm;
             yl &= f->hm;
             if (!box_blended(f->im, xl, mx, yl, my))
                 blend_box(f->im, xl, mx, yl, my);
         }
-        if (j == 0)
+        if (!f->dt.hash)
+            disp_fetch_one(f, nr, g->run, g->wv, g->fx, g->fy, g->ix, g->iy, g->acc, j == 0);
+        else if (j == 0)
             disp_fetch(f, g->hash, nr, g->run, g->rx, g->ry, g->wv, g->fx, g->fy, g->ix, g->iy,
                        g->acc, 1);
         else
@@ -1063,7 +1095,7 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
          * deviation from its mean */
         f4 acc = ld4(vx + GRID_A_SLOPE);
         float km = p->k_mean;
-        for (int j = 0; j < 3; j++) {
+        for (int j = 0; j < (f->dt.hash ? 3 : 1); j++) {
             f4 m, q;
             float w = t.w[j];
             f4 wl = { w, w, w * w, w * w };
@@ -1574,7 +1606,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
             d->im = &p->disp_f;
             d->data = p->disp_f.data;
             d->lambda_m = p->lambda_m;
-            detile_frame_set(&d->dt, g->hash, i, p->inv_l, cam);
+            detile_frame_set(&d->dt, g->detile ? g->hash : NULL, i, p->inv_l, cam);
             /* a block is skipped from a hair above lambda / Nmin, where the weight is 0 (the
              * exact per-vertex weight decides the rest) */
             d->foot_zero = p->lambda_m / FILTER_NMIN * (1.0f + 1e-5f);
@@ -1591,7 +1623,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
         if (p->cpu) {
             int top = p->levels - 1, lo, hi;
             f->p = p;
-            detile_frame_set(&f->dt, g->hash, i, p->inv_l, cam);
+            detile_frame_set(&f->dt, g->detile ? g->hash : NULL, i, p->inv_l, cam);
             f->lev_k = (float)p->slope->width * (float)p->inv_l;
             lo = mip_level(g->foot_lo * f->lev_k, top);
             hi = mip_level(g->foot_hi * f->lev_k, top);

@@ -28,6 +28,8 @@ struct grid_desc {
     int kind;                 /* enum geometry_kind (renderer.h): 0 projected grid, 1 patches */
     int w, h;                 /* projected grid vertices; default 96 x 64 (cells of about 13 x 11 pixels at 1280x720) */
     unsigned cpu_patterns;    /* bit i: pattern i's slope/whitecap moments resolved per vertex */
+    int no_detile;            /* 1: each pattern read once, at no offset (detile.h): its tile
+                               * repeats, at the CPU cost before the lattice (swell --detile off) */
 };
 
 struct grid;

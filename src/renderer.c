@@ -423,12 +423,13 @@ static int choose_vtf(const struct renderer *r)
 {
     GLint combined = 0;
     int n = r->t->patterns;
+    int hash = !r->d.no_detile;
     if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask ||
-        r->gpu->caps.vertex_texture_units < 2 * n + 1)
+        r->gpu->caps.vertex_texture_units < 2 * n + hash)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     /* a unit per loop frame of every pattern and one for the lattice hash (detile.h) */
-    if (combined < UNIT_PATTERNS + r->nfs + r->nwc + 2 * n + 1)
+    if (combined < UNIT_PATTERNS + r->nfs + r->nwc + 2 * n + hash)
         return 0;
     for (int i = 0; i < n; i++) {
         const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);
@@ -682,9 +683,10 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
         cell[i][1] = sh[1];
     }
     /* the atlas's hash on the unit after the displacement's (choose_vtf counts it) */
-    bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
-             r->d.quality == QUALITY_HIGH ? r->fresnel_tex : r->fresnel_sun_tex,
-             u[VU_DETILE_TEX]);
+    if (!r->d.no_detile)
+        bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
+                 r->d.quality == QUALITY_HIGH ? r->fresnel_tex : r->fresnel_sun_tex,
+                 u[VU_DETILE_TEX]);
     float atlas[4];
     atlas_hash_frame(r, atlas);
     glUniform4fv(u[VU_DETILE_ATLAS], 1, atlas);
@@ -794,9 +796,10 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = A_COUNT;
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s", k,
-                             kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
-                             r->run_lod ? " SWELL_RUN_LOD" : "");
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s",
+                             k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
+                             r->run_lod ? " SWELL_RUN_LOD" : "",
+                             r->d.no_detile ? " SWELL_NO_DETILE" : "");
             int v = VARIANT(k, kw);
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",
@@ -963,6 +966,7 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     gd.w = r->d.grid_w;
     gd.h = r->d.grid_h;
     gd.cpu_patterns = r->cpu_mask;
+    gd.no_detile = r->d.no_detile;
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)))
         goto fail;
@@ -1415,7 +1419,8 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
      * coverage argument (grid.c) rests on it. */
     struct camera cam_local = *user_cam;
     const struct camera *cam = &cam_local;
-    cam_local.surface_z_m = sea_surface_height(r->t, user_cam->pos[0], user_cam->pos[1], t_s);
+    cam_local.surface_z_m = sea_surface_height(r->t, !r->d.no_detile, user_cam->pos[0],
+                                             user_cam->pos[1], t_s);
     r->camera_raise_m = 0.0;
     if (cam_local.pos[2] < cam_local.surface_z_m + CAMERA_CLEARANCE_M) {
         r->camera_raise_m = cam_local.surface_z_m + CAMERA_CLEARANCE_M - cam_local.pos[2];
@@ -1508,6 +1513,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
         "fetches: per run of rows only the patterns whose mip means still vary there; "
         "whitecaps of %d pattern(s); %s\n"
+        "tiles: %s\n"
         "fragment precision: %s\n"
         "sky map: %s\n"
         "shading: %s\n",
@@ -1521,6 +1527,9 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         r->run_lod ? "one level per run, by binding that level's own texture (software "
                      "rasteriser: per-pixel LOD is its slow path)"
                    : "per-pixel LOD",
+        r->d.no_detile ? "each pattern read once: it repeats on its tile (--detile off)"
+                       : "each pattern read at three random offsets blended over a lattice of "
+                         "half-tiles (Heitz & Neyret 2018, detile.h)",
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",

@@ -37,6 +37,11 @@ struct renderer_desc {
                                          * its mip means are nearly flat (tests compare) */
     int no_sky;                         /* 1: draw no sky, so the sea's silhouette meets the
                                          * clear colour (tests: the horizon row) */
+    int no_detile;                      /* 1: read each pattern once, at no offset, instead of
+                                         * at its lattice's three random offsets (detile.h):
+                                         * the tiles repeat, at the cost before the lattice
+                                         * (swell --detile off; the CPU query sea.h takes the
+                                         * same flag) */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
                                          * the sea, so a pixel neither covers shows (swell
                                          * --debug uncovered, the frame tests); default 0: a

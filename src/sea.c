@@ -29,7 +29,7 @@ static void sample3(const struct swell_table *tb, int layer, double u, double v,
     }
 }
 
-void sea_displacement(const struct swell_tables *t, double x, double y, double t_s,
+void sea_displacement(const struct swell_tables *t, int detile, double x, double y, double t_s,
                       double out[3])
 {
     out[0] = out[1] = out[2] = 0.0;
@@ -44,8 +44,11 @@ void sea_displacement(const struct swell_tables *t, double x, double y, double t
          * (detile.h); texel centres at (i + 0.5) / n */
         struct detile_taps tp;
         double wgt = (double)ph.w / STREAM_W_ONE;
-        detile_taps(i, x / l, y / l, &tp);
-        for (int j = 0; j < 3; j++) {
+        if (detile)
+            detile_taps(i, x / l, y / l, &tp);
+        else
+            tp = (struct detile_taps){ .w = { 1.0f, 0.0f, 0.0f } };
+        for (int j = 0; j < (detile ? 3 : 1); j++) {
             double u = (x / l + tp.du[j]) * tb->width - 0.5;
             double v = (y / l + tp.dv[j]) * tb->height - 0.5;
             sample3(tb, ph.f0, u, v, a);
@@ -56,17 +59,18 @@ void sea_displacement(const struct swell_tables *t, double x, double y, double t
     }
 }
 
-double sea_surface_height(const struct swell_tables *t, double x, double y, double t_s)
+double sea_surface_height(const struct swell_tables *t, int detile, double x, double y,
+                          double t_s)
 {
     double px = x, py = y, d[3] = { 0.0, 0.0, 0.0 };
     for (int k = 0; k < SEA_INVERT_STEPS; k++) {
-        sea_displacement(t, px, py, t_s, d);
+        sea_displacement(t, detile, px, py, t_s, d);
         double nx = x - d[0], ny = y - d[1], step = fabs(nx - px) + fabs(ny - py);
         px = nx;
         py = ny;
         if (step < SEA_INVERT_TOL)
             break;
     }
-    sea_displacement(t, px, py, t_s, d);
+    sea_displacement(t, detile, px, py, t_s, d);
     return d[2];
 }

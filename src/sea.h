@@ -11,13 +11,16 @@
 
 #include "tables.h"
 
-/* Choppy displacement (Dx, Dy, Dz) of the sea-plane point (x, y) at time t_s, m. */
-void sea_displacement(const struct swell_tables *t, double x, double y, double t_s,
+/* Choppy displacement (Dx, Dy, Dz) of the sea-plane point (x, y) at time t_s, m. detile: each
+ * pattern read at its lattice's three random offsets (detile.h), as the renderer draws it by
+ * default; 0: once at no offset (renderer_desc no_detile). */
+void sea_displacement(const struct swell_tables *t, int detile, double x, double y, double t_s,
                       double out[3]);
 
 /* Height of the displaced surface above the world point (x, y), m: the rest point p with
  * p + D_xy(p) = (x, y) found by fixed-point iteration (the choppy map contracts where the
  * surface does not fold), then D_z(p). */
-double sea_surface_height(const struct swell_tables *t, double x, double y, double t_s);
+double sea_surface_height(const struct swell_tables *t, int detile, double x, double y,
+                          double t_s);
 
 #endif

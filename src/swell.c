@@ -45,6 +45,7 @@ struct options {
     int quality, geometry, tier;
     int pixel_lod;              /* --lod pixel */
     int debug_uncovered;        /* --debug uncovered */
+    int no_detile;              /* --detile off */
     int verbose;
     int bench;                  /* --bench: time frames against the baseline quad */
     int warmup;                 /* --warmup: untimed bench frames; -1 = default */
@@ -88,6 +89,9 @@ static void usage(FILE *f)
 "  --tier T          force a lower device tier: gles2-min | gles2-ext | gles3      [best]\n"
 "  --lod L           texture level: auto (one whole level per run of rows on software\n"
 "                    rasterisers, per pixel on GPUs) | pixel (per pixel, as GPUs) [auto]\n"
+"  --detile D        on: each wave pattern read at three random offsets blended, so no\n"
+"                    pattern repeats on its tile | off: read once, the tiles repeat,\n"
+"                    for GPUs that cannot afford three times the pattern fetches   [on]\n"
 "KMS:\n"
 "  --device PATH     DRM device such as /dev/dri/card0       [first with a display]\n"
 "  --connector NAME  connector such as HDMI-A-1 or Virtual-1    [first connected]\n"
@@ -166,7 +170,7 @@ static int is_value_option(const char *a)
         "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
         "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode", "--kms-api",
-        "--warmup", "--results", "--scene", "--debug",
+        "--warmup", "--results", "--scene", "--debug", "--detile",
     };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (!strcmp(a, names[i]))
@@ -283,6 +287,11 @@ static int parse_args(int argc, char **argv, struct options *o)
                 o->pixel_lod = !strcmp(v, "pixel");
             else
                 r = swell_fail(&err, SWELL_E_ARG, "--lod: '%s' is not auto or pixel", v);
+        } else if (!strcmp(a, "--detile")) {
+            if (!strcmp(v, "on") || !strcmp(v, "off"))
+                o->no_detile = !strcmp(v, "off");
+            else
+                r = swell_fail(&err, SWELL_E_ARG, "--detile: '%s' is not on or off", v);
         } else if (!strcmp(a, "--device")) {
             o->platform.device = v;
             if (!v[0])
@@ -493,6 +502,7 @@ static int run_bench(const struct options *o, struct platform_handle *ph, struct
         .frames = o->frames > 0 ? o->frames : 0,
         .scene = o->scene ? o->scene : o->tables_dir ? o->tables_dir : "baked in memory",
         .quality = render_quality_name(o->quality), .geometry = geometry_kind_name(o->geometry),
+        .detile = o->no_detile ? "off" : "on",
     };
     struct bench_result res;
     int rc = bench_run(&bd, &res, err);
@@ -572,6 +582,7 @@ int main(int argc, char **argv)
         .tables = &tables, .gpu = &gpu, .quality = o.quality, .geometry = o.geometry,
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
+        .no_detile = o.no_detile,
     };
     if (renderer_create(&rd, &r, &err))
         goto fail_gpu;

@@ -15,7 +15,8 @@
 # table), BENCH_WARMUP (10), BENCH_MINUTES (15: if the matrix is projected to take longer, the
 # warm-up is cut to 2 frames, never the timed frames), BENCH_CALLGRIND (1; 0 skips it),
 # BENCH_CG_FRAMES (4 frames per callgrind run), BENCH_CG_TIERS and BENCH_CG_PATHS (the tiers and
-# paths counted under callgrind, default the matrix's), BENCH_DOCS (docs).
+# paths counted under callgrind, default the matrix's), BENCH_DETILE ("on": swell --detile; "on
+# off" measures both, the cost of the lattice of random offsets), BENCH_DOCS (docs).
 set -u
 docs_only=0
 if [ "${1:-}" = "--docs-only" ]; then docs_only=1; shift; fi
@@ -28,6 +29,7 @@ scenes=${BENCH_SCENES:-calm rough}
 paths=${BENCH_PATHS:-surface 1km 10km}
 qualities=${BENCH_QUALITIES:-low high}
 tiers=${BENCH_TIERS:-gles2-min gles2-ext gles3}
+detiles=${BENCH_DETILE:-on}
 size=${BENCH_SIZE:-1280x720}
 frames=${BENCH_FRAMES:-100}
 warmup=${BENCH_WARMUP:-10}
@@ -60,17 +62,17 @@ def target: if .quality == "high" then .targets_ratio.high else .targets_ratio.l
 "GL: \([.scenes[] | .gl_renderer // empty] | first // "n/a"), surfaceless, \(.size), with GLIBC_TUNABLES=glibc.malloc.hugetlb=1 (huge pages for llvmpipe's large allocations: without them a scene's time depended on the physical pages each process got, see tools/bench.sh). Each scene: \(.timed_frames) timed frames after warm-up, each a whole frame ending in glFinish; the baseline is one fullscreen quad sampling a 512x512 RGBA8 mipmapped texture (trilinear, LOD ~0.5), one draw per glFinish, interleaved frame by frame with the scene in the same process. ms = milliseconds per frame (median, 95th percentile by nearest rank).",
 "CPU = instructions per frame of swell's own CPU work (grid: grid_update, the projected grid + displacement on the CPU (gles2-min), or grid_projection, the frame of the vertex-shader grid (tiers with vertex texture fetch); stream_blend: loop-frame blending) counted by callgrind; the texture upload is the driver's and listed apart below.\n",
 "Targets: ratio <= \($T.ratio_high) (high), <= \($T.ratio_low) (low); CPU <= \($T.cpu_instructions_per_frame / 1e6) M instructions/frame; GPU bytes within the preset budget; bake <= \($T.bake_seconds.default) s (default), <= \($T.bake_seconds.tiny) s (tiny).\n",
-"| scene | camera | tier | quality | median ms | p95 ms | quad ms | ratio | target | CPU instr/frame | GPU MiB / budget | result |",
-"|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|",
-(.scenes | sort_by(.scene, (.path | if . == "surface" then 0 elif . == "1km" then 1 else 2 end), .quality, (.tier | if . == "gles2-min" then 0 elif . == "gles2-ext" then 1 else 2 end))[] |
+"| scene | camera | tier | quality | detile | median ms | p95 ms | quad ms | ratio | target | CPU instr/frame | GPU MiB / budget | result |",
+"|---|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|",
+(.scenes | sort_by(.scene, (.path | if . == "surface" then 0 elif . == "1km" then 1 else 2 end), .quality, (.tier | if . == "gles2-min" then 0 elif . == "gles2-ext" then 1 else 2 end), (.detile // "on"))[] |
   . + {targets_ratio: {high: $T.ratio_high, low: $T.ratio_low}} |
-  if .error then "| \(.scene) | \(.path) | \(.tier) | \(.quality) | | | | | | | | FAILED: \(.error | gsub("\\|"; "/")) |"
+  if .error then "| \(.scene) | \(.path) | \(.tier) | \(.quality) | \(.detile // "on") | | | | | | | | FAILED: \(.error | gsub("\\|"; "/")) |"
   else
     (.cpu_instructions_per_frame_callgrind // .cpu_instructions_per_frame) as $cpu |
     ([ (if .ratio > target then "ratio" else empty end),
        (if $cpu != null and $cpu > $T.cpu_instructions_per_frame then "CPU" else empty end),
        (if .budget_bytes > 0 and .bytes_gpu > .budget_bytes then "GPU bytes" else empty end) ]) as $fails |
-    "| \(.scene) | \(.path) | \(.tier) | \(.quality) | \(.ms_median | f(1)) | \(.ms_p95 | f(1)) | \(.baseline_quad_ms | f(2)) | \(.ratio | f(1)) | \(target) | \($cpu | mega) | \(.bytes_gpu | mi) / \(.budget_bytes | mi) | \(if ($fails | length) == 0 then "pass" else "FAIL: " + ($fails | join(", ")) end)\(if .frames < 100 then " (only \(.frames) frames)" else "" end)\(if $cpu == null then " (CPU n/a)" else "" end) |"
+    "| \(.scene) | \(.path) | \(.tier) | \(.quality) | \(.detile // "on") | \(.ms_median | f(1)) | \(.ms_p95 | f(1)) | \(.baseline_quad_ms | f(2)) | \(.ratio | f(1)) | \(target) | \($cpu | mega) | \(.bytes_gpu | mi) / \(.budget_bytes | mi) | \(if ($fails | length) == 0 then "pass" else "FAIL: " + ($fails | join(", ")) end)\(if .frames < 100 then " (only \(.frames) frames)" else "" end)\(if $cpu == null then " (CPU n/a)" else "" end) |"
   end),
 "\n## Bake time per budget preset (median of 3 runs)\n",
 "| preset | bake s | whole command s | target s | GPU MiB / budget | result |",
@@ -78,9 +80,9 @@ def target: if .quality == "high" then .targets_ratio.high else .targets_ratio.l
 (.bake[] | "| \(.preset) | \(.bake_seconds | f(2)) | \(.command_seconds | f(2)) | \(.target_seconds) | \(.bytes_gpu | mi) / \(.budget_bytes | mi) | \(if .bake_seconds <= .target_seconds then "pass" else "FAIL" end) |"),
 "\n## CPU instructions per frame (callgrind)\n",
 "Counted with `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=grid_update --toggle-collect=grid_projection --toggle-collect=stream_blend --toggle-collect=upload_chain`, costs under renderer_frame divided by the calls of grid_update or grid_projection; softpipe at a twentieth of the frame size, same aspect (swell's functions run the same on any driver; the upload's driver share is softpipe's).\n",
-"| tier | camera | frames | grid | stream_blend | swell total | upload (driver, softpipe) | result |",
-"|---|---|---:|---:|---:|---:|---:|---|",
-(.callgrind | sort_by(.tier, .path)[] | "| \(.tier) | \(.path) | \(.frames // "n/a") | \(.grid_update_per_frame | mega) | \(.stream_blend_per_frame | mega) | \(.cpu_instructions_per_frame | mega) | \(.upload_chain_per_frame_softpipe | mega) | \(if .cpu_instructions_per_frame == null then "n/a" elif .cpu_instructions_per_frame <= $T.cpu_instructions_per_frame then "pass" else "FAIL" end) |"),
+"| tier | camera | detile | frames | grid | stream_blend | swell total | upload (driver, softpipe) | result |",
+"|---|---|---|---:|---:|---:|---:|---:|---|",
+(.callgrind | sort_by(.tier, .path, (.detile // "on"))[] | "| \(.tier) | \(.path) | \(.detile // "on") | \(.frames // "n/a") | \(.grid_update_per_frame | mega) | \(.stream_blend_per_frame | mega) | \(.cpu_instructions_per_frame | mega) | \(.upload_chain_per_frame_softpipe | mega) | \(if .cpu_instructions_per_frame == null then "n/a" elif .cpu_instructions_per_frame <= $T.cpu_instructions_per_frame then "pass" else "FAIL" end) |"),
 "\n![median frame time against camera altitude, per tier and quality](bench.png)"
 JQ
 jq -r "$table_jq" "$out/results.json" >"$docs/bench.md.tmp" &&
@@ -149,21 +151,22 @@ done
 export GLIBC_TUNABLES=${GLIBC_TUNABLES:-glibc.malloc.hugetlb=1}
 total=0
 for s in $scenes; do for p in $paths; do for q in $qualities; do for t in $tiers; do
-    total=$((total + 1)); done; done; done; done
+    for d in $detiles; do total=$((total + 1)); done; done; done; done; done
 done_n=0; failed=0
 t_matrix=$(now)
 for s in $scenes; do for p in $paths; do for q in $qualities; do for t in $tiers; do
-    name="$s-$p-$q-$t"
+    for d in $detiles; do
+    name="$s-$p-$q-$t$([ "$d" = on ] || echo "-detile-$d")"
     t0=$(now)
     if "$swell" --platform surfaceless --size "$size" --tables "$out/tables/$s" --scene "$s" \
-        --path "$p" --quality "$q" --tier "$t" --time 0 --fps 30 --bench --frames "$frames" \
-        --warmup "$warmup" --results "$out/scenes/$name.json" >"$out/logs/$name.log" 2>&1; then
+        --path "$p" --quality "$q" --tier "$t" --detile "$d" --time 0 --fps 30 --bench \
+        --frames "$frames" --warmup "$warmup" --results "$out/scenes/$name.json" >"$out/logs/$name.log" 2>&1; then
         grep '^swell: bench: ' "$out/logs/$name.log" | grep median | sed 's/^swell: //'
     else
         failed=$((failed + 1))
         echo "bench: $name FAILED: $(tail -n 1 "$out/logs/$name.log")"
-        jq -n --arg s "$s" --arg p "$p" --arg q "$q" --arg t "$t" --arg e "$(tail -n 1 "$out/logs/$name.log")" \
-            '{scene: $s, path: $p, quality: $q, tier: $t, error: $e}' >"$out/scenes/$name.json"
+        jq -n --arg s "$s" --arg p "$p" --arg q "$q" --arg t "$t" --arg d "$d" --arg e "$(tail -n 1 "$out/logs/$name.log")" \
+            '{scene: $s, path: $p, quality: $q, tier: $t, detile: $d, error: $e}' >"$out/scenes/$name.json"
     fi
     done_n=$((done_n + 1))
     # Projected time of the whole matrix; the warm-up (never the timed frames) gives way.
@@ -172,7 +175,7 @@ for s in $scenes; do for p in $paths; do for q in $qualities; do for t in $tiers
         echo "bench: the matrix is projected to take $(printf %.0f "$projected") s, over $minutes min: warm-up cut from $warmup to 2 frames (timed frames stay $frames)"
         warmup=2
     fi
-done; done; done; done
+done; done; done; done; done
 echo "bench: $done_n scenes in $(printf %.0f "$(calc "$(now) - $t_matrix")") s, $failed failed"
 
 # ---- CPU instructions per frame under callgrind ----------------------------------------------
@@ -182,10 +185,10 @@ echo "bench: $done_n scenes in $(printf %.0f "$(calc "$(now) - $t_matrix")") s, 
 # of grid_projection (the vertex-shader grid of tiers with vertex texture fetch). The run uses
 # softpipe at a twentieth of the size: swell's functions execute the same on any driver and the run is many
 # times quicker under valgrind; the upload's driver share is softpipe's (reported apart).
-cg_json() {   # cg_json TIER PATH OUTFILE -> JSON object on stdout
-    local file=$3
+cg_json() {   # cg_json TIER PATH DETILE OUTFILE -> JSON object on stdout
+    local file=$4
     callgrind_annotate --inclusive=yes --tree=caller --threshold=100 "$file" 2>/dev/null | awk \
-        -v own="$cg_own" -v upl="$cg_upload" -v tier="$1" -v path="$2" '
+        -v own="$cg_own" -v upl="$cg_upload" -v tier="$1" -v path="$2" -v detile="$3" '
         function num(s) { gsub(/,/, "", s); return s + 0 }
         /^[[:space:]]*$/ { ir = ""; calls = 0; next }
         /< .*:renderer_frame \(/ {
@@ -198,10 +201,10 @@ cg_json() {   # cg_json TIER PATH OUTFILE -> JSON object on stdout
         }
         END {
             frames = n["grid_update"] > n["grid_projection"] ? n["grid_update"] : n["grid_projection"]
-            if (frames <= 0) { print "{\"tier\": \"" tier "\", \"path\": \"" path "\", \"error\": \"neither grid_update nor grid_projection seen\"}"; exit }
+            if (frames <= 0) { print "{\"tier\": \"" tier "\", \"path\": \"" path "\", \"detile\": \"" detile "\", \"error\": \"neither grid_update nor grid_projection seen\"}"; exit }
             split(own, o, " "); s = 0
             for (k in o) s += cost[o[k]]
-            printf "{\"tier\": \"%s\", \"path\": \"%s\", \"frames\": %d, \"functions\": \"%s\", ", tier, path, frames, own
+            printf "{\"tier\": \"%s\", \"path\": \"%s\", \"detile\": \"%s\", \"frames\": %d, \"functions\": \"%s\", ", tier, path, detile, frames, own
             printf "\"cpu_instructions_per_frame\": %.0f, \"grid_update_per_frame\": %.0f, ", s / frames, (cost["grid_update"] + cost["grid_projection"]) / frames
             printf "\"stream_blend_per_frame\": %.0f, \"upload_chain_per_frame_softpipe\": %.0f}\n", cost["stream_blend"] / frames, cost[upl] / frames
         }'
@@ -220,18 +223,19 @@ if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
     # A twentieth of the frame size: the same aspect ratio, so the same projected grid.
     cg_w=$(( ${size%x*} / 20 )); cg_h=$(( ${size#*x} / 20 ))
     [ "$cg_w" -ge 16 ] || cg_w=16; [ "$cg_h" -ge 16 ] || cg_h=16
-    for t in $cg_tiers; do for p in $cg_paths; do
-        f="$out/callgrind/$t-$p.out"
+    for t in $cg_tiers; do for p in $cg_paths; do for d in $detiles; do
+        n="$t-$p$([ "$d" = on ] || echo "-detile-$d")"
+        f="$out/callgrind/$n.out"
         if GALLIUM_DRIVER=softpipe valgrind --tool=callgrind --callgrind-out-file="$f" \
             --collect-atstart=no $toggles "$swell" --platform surfaceless --size "${cg_w}x$cg_h" \
             --tables "$out/tables/$cg_scene" --path "$p" --tier "$t" --quality high \
-            --frames "$cg_frames" --fps 30 >"$out/logs/callgrind-$t-$p.log" 2>&1; then
-            cg_json "$t" "$p" "$f" >"$out/callgrind/$t-$p.json"
-            echo "bench: callgrind $t $p: $(jq -r '"\(.cpu_instructions_per_frame) instructions/frame (grid_update \(.grid_update_per_frame), stream_blend \(.stream_blend_per_frame))"' "$out/callgrind/$t-$p.json")"
+            --detile "$d" --frames "$cg_frames" --fps 30 >"$out/logs/callgrind-$n.log" 2>&1; then
+            cg_json "$t" "$p" "$d" "$f" >"$out/callgrind/$n.json"
+            echo "bench: callgrind $n: $(jq -r '"\(.cpu_instructions_per_frame) instructions/frame (grid_update \(.grid_update_per_frame), stream_blend \(.stream_blend_per_frame))"' "$out/callgrind/$n.json")"
         else
-            echo "bench: callgrind $t $p FAILED: $(tail -n 1 "$out/logs/callgrind-$t-$p.log")"
+            echo "bench: callgrind $n FAILED: $(tail -n 1 "$out/logs/callgrind-$n.log")"
         fi
-    done; done
+    done; done; done
 else
     echo "bench: callgrind skipped (BENCH_CALLGRIND=$use_callgrind or valgrind missing)"
 fi
@@ -250,7 +254,7 @@ jq -n \
     --slurpfile bake <(cat "$out"/bake/*.summary.json) \
     --slurpfile cg <(cat /dev/null "${cg_files[@]}") \
     --slurpfile sc <(cat /dev/null "${scene_files[@]}") '
-    def cgfor($t; $p): ([$cg[] | select(.tier == $t and .path == $p)] | first);
+    def cgfor($t; $p; $d): ([$cg[] | select(.tier == $t and .path == $p and (.detile // "on") == $d)] | first);
     {
       generated: $date, source: $source, machine: {kernel: $host, cpu: $cpu, cores: $cores, loadavg_at_start: $load0,
                 loadavg_at_end: $load},
@@ -258,7 +262,7 @@ jq -n \
       targets: {ratio_high: 6, ratio_low: 2.5, cpu_instructions_per_frame: 2000000,
                 bake_seconds: {tiny: 0.5, default: 2.0}},
       bake: $bake, callgrind: $cg,
-      scenes: [$sc[] | . as $s | cgfor($s.tier; $s.path) as $c |
+      scenes: [$sc[] | . as $s | cgfor($s.tier; $s.path; $s.detile // "on") as $c |
                . + {cpu_instructions_per_frame_callgrind: ($c.cpu_instructions_per_frame // null)}]
     }' >"$out/results.json.tmp" && mv "$out/results.json.tmp" "$out/results.json" ||
     die "could not assemble $out/results.json"

@@ -134,6 +134,7 @@ static int g_draws_wc_const; /* renderer_stats.sea_draws_wc_const of the last re
 static int g_draws_resolved_drop; /* renderer_stats.sea_draws_resolved_drop of the last render */
 static int g_vtf_used;       /* renderer_stats.vtf of the last render */
 static int g_no_sky;         /* renderer_desc.no_sky */
+static int g_no_detile;      /* renderer_desc.no_detile */
 static float g_bias_max;     /* when > 0: gpu_caps.max_lod_bias, as a device with that limit */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
@@ -161,6 +162,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.keep_resolved = g_keep_resolved;
     d.debug_uncovered = 1;
     d.no_sky = g_no_sky;
+    d.no_detile = g_no_detile;
     rc = renderer_create(&d, &r, &err);
     if (rc)
         fail_msg("renderer_create: %s", err.msg);
@@ -306,7 +308,7 @@ static int reset_fixture(void **state)
     fx.tables = fx.synthetic;
     g_exposure = 0.0f;
     g_move_sun[0] = g_move_sun[1] = 0.0f;
-    g_cpu_geometry = g_fetch_all = g_pixel_lod = g_keep_resolved = g_no_sky = 0;
+    g_cpu_geometry = g_fetch_all = g_pixel_lod = g_keep_resolved = g_no_sky = g_no_detile = 0;
     g_bias_max = 0.0f;
     return 0;
 }
@@ -823,7 +825,9 @@ static void test_run_lod(void **state)
 }
 
 /* Where the tier has vertex texture fetch: the grid built and displaced in ocean.vert against
- * the same tier's CPU grid (grid.c), same scene: the two geometries agree to RMSE < 1 / 255. */
+ * the same tier's CPU grid (grid.c), same scene: the two geometries agree to RMSE < 1 / 255,
+ * with the lattice of random offsets (detile.h) and without it (renderer_desc no_detile), and
+ * the two lattice settings draw different seas. */
 static void test_vtf_geometry(void **state)
 {
     struct camera c;
@@ -836,15 +840,27 @@ static void test_vtf_geometry(void **state)
     if (vunits < 8)
         skip_unless_ci("fewer than 8 vertex texture units");
     surface_camera(&c);
-    g_cpu_geometry = 1;
-    render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
-    assert_int_equal(g_vtf_used, 0);
-    g_cpu_geometry = 0;
-    render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
-    assert_int_equal(g_vtf_used, 1);
-    double rmse = rmse_rgb(fx.img, fx.img2);
-    print_message("%s: CPU grid vs vertex-shader grid: RMSE %.3f / 255\n", gpu_tier_name(best), rmse);
-    assert_true(rmse < 1.0);
+    static uint8_t on[W * H * 4];
+    for (g_no_detile = 0; g_no_detile <= 1; g_no_detile++) {
+        g_cpu_geometry = 1;
+        render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
+        assert_int_equal(g_vtf_used, 0);
+        g_cpu_geometry = 0;
+        render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
+        assert_int_equal(g_vtf_used, 1);
+        double rmse = rmse_rgb(fx.img, fx.img2);
+        print_message("%s, detile %s: CPU grid vs vertex-shader grid: RMSE %.3f / 255\n",
+                      gpu_tier_name(best), g_no_detile ? "off" : "on", rmse);
+        assert_true(rmse < 1.0);
+        if (!g_no_detile) {
+            memcpy(on, fx.img2, sizeof on);
+        } else {
+            double d = rmse_rgb(on, fx.img2);
+            print_message("detile on vs off: RMSE %.2f / 255\n", d);
+            assert_true(d > 2.0);
+        }
+    }
+    g_no_detile = 0;
 }
 
 /* Rows where a pattern's patch is smaller than a pixel take its top mip level as a constant

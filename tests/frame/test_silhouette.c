@@ -83,7 +83,7 @@ static void predict(const struct swell_tables *t, const struct camera *c, double
         double ca = cos(az), sa = sin(az), best = -INFINITY;
         for (double d = 0.5; d < 40000.0; d += fmax(0.1, d * step)) {
             double p[2] = { c->pos[0] + d * ca, c->pos[1] + d * sa }, disp[3];
-            sea_displacement(t, p[0], p[1], t_s, disp);
+            sea_displacement(t, 1, p[0], p[1], t_s, disp);
             double q[3] = { p[0] + disp[0] - c->pos[0], p[1] + disp[1] - c->pos[1],
                             disp[2] - d * d / (2.0 * EARTH_RADIUS_M) - c->pos[2] };
             double pc, pr;
@@ -169,7 +169,7 @@ static void test_storm_silhouette(void **state)
             c.pos[2] = g_views[v].z;
             c.heading_deg = g_views[v].heading;
             /* the camera the renderer draws from: CAMERA_CLEARANCE_M above the surface */
-            c.pos[2] = fmax(c.pos[2], sea_surface_height(&t, c.pos[0], c.pos[1], g_views[v].t) +
+            c.pos[2] = fmax(c.pos[2], sea_surface_height(&t, 1, c.pos[0], c.pos[1], g_views[v].t) +
                                       CAMERA_CLEARANCE_M);
             predict(&t, &c, g_views[v].t, 0.01, top, flat);   /* a coarser screen */
             rise_stats(top, flat, &mean, &sd);

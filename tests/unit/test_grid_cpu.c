@@ -195,7 +195,9 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
  * with the longer pattern first or second (grid.c sums from the longest, which stores), near
  * the origin and 40 km out (wrapped texture offsets), and with a displacement image narrower
  * than a blend block. */
-static void check_grid_against_reference(int reversed, int narrow, double cx, double cy)
+/* detile 0: grid_desc no_detile, the reference reads one tap at no offset */
+static void check_grid_against_reference(int reversed, int narrow, double cx, double cy,
+                                         int detile)
 {
     struct swell_tables s;
     struct grid *g;
@@ -210,6 +212,7 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
     d.w = w;
     d.h = h;
     d.cpu_patterns = 1u;
+    d.no_detile = !detile;
     if (narrow) {
         /* narrower than the lattice's offsets (detile.h): refused, said why */
         assert_int_not_equal(grid_create(&d, &g, &err), 0);
@@ -261,9 +264,10 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                     double wgt = grid_filter_weight(2.0f, 4.0f, (float)(lambda / fmax(foot, 1e-6)));
                     double u = off[p][0] + rx / s.pattern[p].size_m;
                     double v = off[p][1] + ry / s.pattern[p].size_m;
-                    struct detile_taps tp;   /* read at three offsets blended (detile.h) */
-                    detile_taps(p, (cx + rx) / s.pattern[p].size_m,
-                                (cy + ry) / s.pattern[p].size_m, &tp);
+                    struct detile_taps tp = { .w = { 1.0f, 0.0f, 0.0f } };
+                    if (detile)   /* read at three offsets blended (detile.h) */
+                        detile_taps(p, (cx + rx) / s.pattern[p].size_m,
+                                    (cy + ry) / s.pattern[p].size_m, &tp);
                     for (int q = 0; q < 3; q++)
                         for (int k = 0; k < 3 && wgt > 0.0; k++)
                             disp[k] += wgt * tp.w[q] *
@@ -284,9 +288,10 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                 double u = off[0][0] + rx / s.pattern[0].size_m, v = off[0][1] + ry / s.pattern[0].size_m;
                 /* three taps blended (detile.h): means by w, variances by w^2, the foam memory's
                  * deviation from its mean over the patch */
-                struct detile_taps tp;
-                detile_taps(0, (cx + rx) / s.pattern[0].size_m, (cy + ry) / s.pattern[0].size_m,
-                            &tp);
+                struct detile_taps tp = { .w = { 1.0f, 0.0f, 0.0f } };
+                if (detile)
+                    detile_taps(0, (cx + rx) / s.pattern[0].size_m,
+                                (cy + ry) / s.pattern[0].size_m, &tp);
                 double mean[2] = { 0, 0 }, var2 = 0.0, km = k_mean, kv = 0.0;
                 for (int tap = 0; tap < 3; tap++) {
                     double m[4], q[4], wj = tp.w[tap];
@@ -319,10 +324,12 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
 static void test_grid_against_reference(void **state)
 {
     (void)state;
-    check_grid_against_reference(0, 0, 1234.5, -321.25);
-    check_grid_against_reference(1, 0, 1234.5, -321.25);
-    check_grid_against_reference(0, 0, -40000.375, 38000.5);
-    check_grid_against_reference(0, 1, 1234.5, -321.25);
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 1);
+    check_grid_against_reference(1, 0, 1234.5, -321.25, 1);
+    check_grid_against_reference(0, 0, -40000.375, 38000.5, 1);
+    check_grid_against_reference(0, 1, 1234.5, -321.25, 1);
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 0);
+    check_grid_against_reference(1, 0, -40000.375, 38000.5, 0);
 }
 
 /* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
@@ -453,19 +460,20 @@ static void test_patches(void **state)
  * enough for eq. 2 to keep every pattern in full (footprint under a quarter of the shortest
  * band's wavelength), the displaced vertex is rest + sea_displacement (the displacement images
  * blend the loop frames in float, as sea.c does); and sea_surface_height inverts the choppy
- * map: at the displaced vertex's x, y it gives the vertex's height. */
-static void test_sea_query(void **state)
+ * map: at the displaced vertex's x, y it gives the vertex's height. With the lattice and
+ * without it (detile 0: grid_desc no_detile and the query's flag). */
+static void check_sea_query(int detile)
 {
     struct swell_tables s;
     struct swell_err err;
     struct grid_desc d = { 0 };
     struct grid *g;
     struct camera c;
-    (void)state;
     make_tables(&s);
     d.tables = &s;
     d.w = 96;
     d.h = 64;
+    d.no_detile = !detile;
     assert_int_equal(grid_create(&d, &g, &err), 0);
     float *verts = calloc((size_t)grid_vertex_count(g) * GRID_FLOATS, sizeof(float));
     camera_defaults(&c);
@@ -487,7 +495,7 @@ static void test_sea_query(void **state)
             if (foot > 0.25 * lam_min * 0.95)
                 continue;
             double dd[3], wx = c.pos[0] + v[GRID_A_REST], wy = c.pos[1] + v[GRID_A_REST + 1];
-            sea_displacement(&s, wx, wy, t, dd);
+            sea_displacement(&s, detile, wx, wy, t, dd);
             worst = fmax(worst, fabs(v[0] - (v[GRID_A_REST] + dd[0])));
             worst = fmax(worst, fabs(v[1] - (v[GRID_A_REST + 1] + dd[1])));
             double r2 = (double)v[GRID_A_REST] * v[GRID_A_REST] +
@@ -502,28 +510,28 @@ static void test_sea_query(void **state)
     int inverted = 0;
     for (int k = 0; k < 8000; k++) {
         double px = 500.0 * frand(), py = 500.0 * frand(), d0[3], e = 0.01, j = 0.0;
-        sea_displacement(&s, px, py, t, d0);
+        sea_displacement(&s, detile, px, py, t, d0);
         for (int at = 0; at < 5; at++) {
             double qx = px + 0.25 * at * d0[0], qy = py + 0.25 * at * d0[1];
             double dx[3], dy[3], dxm[3], dym[3];
-            sea_displacement(&s, qx + e, qy, t, dx);
-            sea_displacement(&s, qx - e, qy, t, dxm);
-            sea_displacement(&s, qx, qy + e, t, dy);
-            sea_displacement(&s, qx, qy - e, t, dym);
+            sea_displacement(&s, detile, qx + e, qy, t, dx);
+            sea_displacement(&s, detile, qx - e, qy, t, dxm);
+            sea_displacement(&s, detile, qx, qy + e, t, dy);
+            sea_displacement(&s, detile, qx, qy - e, t, dym);
             /* the Jacobian's row sums: the fixed-point map's contraction in the max norm */
             for (int c2 = 0; c2 < 2; c2++)
                 j = fmax(j, (fabs(dx[c2] - dxm[c2]) + fabs(dy[c2] - dym[c2])) / (2.0 * e));
         }
         if (j > 0.5)
             continue;
-        double zh = sea_surface_height(&s, px + d0[0], py + d0[1], t);
+        double zh = sea_surface_height(&s, detile, px + d0[0], py + d0[1], t);
         worst_h = fmax(worst_h, fabs(zh - d0[2]));
         off_h += fabs(zh - d0[2]) > 1e-3;
         inverted++;
     }
-    print_message("sea query vs %d fully displaced grid vertices: %.2e m; height by inverting "
-                  "the choppy map at %d points: %d off by over 1 mm, at most %.2e m\n", checked,
-                  worst, inverted, off_h, worst_h);
+    print_message("sea query (detile %s) vs %d fully displaced grid vertices: %.2e m; height "
+                  "by inverting the choppy map at %d points: %d off by over 1 mm, at most %.2e m\n",
+                  detile ? "on" : "off", checked, worst, inverted, off_h, worst_h);
     assert_true(checked > 500);
     assert_true(worst < 2e-4);
     assert_true(inverted > 1000);
@@ -531,6 +539,13 @@ static void test_sea_query(void **state)
     free(verts);
     grid_destroy(g);
     tables_destroy(&s);
+}
+
+static void test_sea_query(void **state)
+{
+    (void)state;
+    check_sea_query(1);
+    check_sea_query(0);
 }
 
 /* grid_warp: the knots, linear between them. */
