@@ -211,6 +211,26 @@ int render_quality_from_name(const char *name)
     return -1;
 }
 
+static const char *const detile_names[DETILE_MODE_COUNT] = { "auto", "on", "off" };
+
+const char *detile_mode_name(int m)
+{
+    return m >= 0 && m < DETILE_MODE_COUNT ? detile_names[m] : "?";
+}
+
+int detile_mode_from_name(const char *name)
+{
+    for (int i = 0; name && i < DETILE_MODE_COUNT; i++)
+        if (strcmp(name, detile_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+int renderer_detile(const struct renderer *r)
+{
+    return r->d.detile == DETILE_MODE_ON;
+}
+
 const char *geometry_kind_name(int g)
 {
     return g >= 0 && g < GEOMETRY_COUNT ? geometry_names[g] : "?";
@@ -234,6 +254,8 @@ static void resolve(struct renderer_desc *d)
         d->grid_h = 56;
     if (d->sun_elev_deg == 0.0f)
         d->sun_elev_deg = 30.0f;
+    if (d->detile == DETILE_MODE_AUTO)
+        d->detile = d->quality == QUALITY_HIGH ? DETILE_MODE_ON : DETILE_MODE_OFF;
 }
 
 /* A table of levels mips (levels 1: none) as one texture, or with run_lod one per level. */
@@ -423,7 +445,7 @@ static int choose_vtf(const struct renderer *r)
 {
     GLint combined = 0;
     int n = r->t->patterns;
-    int hash = !r->d.no_detile;
+    int hash = renderer_detile(r);
     if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask ||
         r->gpu->caps.vertex_texture_units < 2 * n + hash)
         return 0;
@@ -683,7 +705,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
         cell[i][1] = sh[1];
     }
     /* the atlas's hash on the unit after the displacement's (choose_vtf counts it) */
-    if (!r->d.no_detile)
+    if (renderer_detile(r))
         bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
                  r->d.quality == QUALITY_HIGH ? r->fresnel_tex : r->fresnel_sun_tex,
                  u[VU_DETILE_TEX]);
@@ -799,7 +821,7 @@ static int build_programs(struct renderer *r, struct swell_err *err)
             int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s",
                              k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
                              r->run_lod ? " SWELL_RUN_LOD" : "",
-                             r->d.no_detile ? " SWELL_NO_DETILE" : "");
+                             renderer_detile(r) ? "" : " SWELL_NO_DETILE");
             int v = VARIANT(k, kw);
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",
@@ -948,9 +970,9 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     if (!desc || !desc->tables || !desc->gpu)
         return swell_fail(err, SWELL_E_ARG, "renderer: descriptor needs tables and a gpu");
     if (desc->quality < 0 || desc->quality >= QUALITY_COUNT || desc->geometry < 0 ||
-        desc->geometry >= GEOMETRY_COUNT)
-        return swell_fail(err, SWELL_E_ARG, "renderer: quality %d / geometry %d out of range",
-                          desc->quality, desc->geometry);
+        desc->geometry >= GEOMETRY_COUNT || desc->detile < 0 || desc->detile >= DETILE_MODE_COUNT)
+        return swell_fail(err, SWELL_E_ARG, "renderer: quality %d / geometry %d / detile %d out "
+                          "of range", desc->quality, desc->geometry, desc->detile);
     if (!(r = calloc(1, sizeof(*r))))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory");
     r->d = *desc;
@@ -966,7 +988,7 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     gd.w = r->d.grid_w;
     gd.h = r->d.grid_h;
     gd.cpu_patterns = r->cpu_mask;
-    gd.no_detile = r->d.no_detile;
+    gd.no_detile = !renderer_detile(r);
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)))
         goto fail;
@@ -1419,7 +1441,7 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
      * coverage argument (grid.c) rests on it. */
     struct camera cam_local = *user_cam;
     const struct camera *cam = &cam_local;
-    cam_local.surface_z_m = sea_surface_height(r->t, !r->d.no_detile, user_cam->pos[0],
+    cam_local.surface_z_m = sea_surface_height(r->t, renderer_detile(r), user_cam->pos[0],
                                              user_cam->pos[1], t_s);
     r->camera_raise_m = 0.0;
     if (cam_local.pos[2] < cam_local.surface_z_m + CAMERA_CLEARANCE_M) {
@@ -1501,6 +1523,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     out->sea_draws_resolved_drop = r->draws_resolved_drop;
     out->run_lod = r->run_lod;
     out->vtf = r->vtf;
+    out->detile = renderer_detile(r);
     out->camera_raise_m = r->camera_raise_m;
 }
 
@@ -1527,8 +1550,9 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         r->run_lod ? "one level per run, by binding that level's own texture (software "
                      "rasteriser: per-pixel LOD is its slow path)"
                    : "per-pixel LOD",
-        r->d.no_detile ? "each pattern read once: it repeats on its tile (--detile off)"
-                       : "each pattern read at three random offsets blended over a lattice of "
+        !renderer_detile(r) ? "each pattern read once: it repeats on its tile (--detile off; "
+                              "auto in low quality)"
+                            : "each pattern read at three random offsets blended over a lattice of "
                          "half-tiles (Heitz & Neyret 2018, detile.h)",
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"

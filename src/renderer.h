@@ -15,6 +15,11 @@
 
 enum render_quality { QUALITY_HIGH = 0, QUALITY_LOW, QUALITY_COUNT };
 enum geometry_kind { GEOMETRY_GRID = 0, GEOMETRY_PATCHES, GEOMETRY_COUNT };
+/* The lattice of random offsets that keeps each pattern from repeating on its tile (detile.h):
+ * AUTO is ON in high quality and OFF in low (Hu's single pass for the weakest GPUs, where the
+ * lattice would cost 2-3.5x the frame on llvmpipe; README); OFF reads each pattern once, at no
+ * offset, so its tiles repeat. */
+enum detile_mode { DETILE_MODE_AUTO = 0, DETILE_MODE_ON, DETILE_MODE_OFF, DETILE_MODE_COUNT };
 
 struct renderer_desc {
     const struct swell_tables *tables;  /* not owned; must outlive the renderer */
@@ -37,11 +42,8 @@ struct renderer_desc {
                                          * its mip means are nearly flat (tests compare) */
     int no_sky;                         /* 1: draw no sky, so the sea's silhouette meets the
                                          * clear colour (tests: the horizon row) */
-    int no_detile;                      /* 1: read each pattern once, at no offset, instead of
-                                         * at its lattice's three random offsets (detile.h):
-                                         * the tiles repeat, at the cost before the lattice
-                                         * (swell --detile off; the CPU query sea.h takes the
-                                         * same flag) */
+    int detile;                         /* enum detile_mode (swell --detile); default AUTO.
+                                         * The CPU query (sea.h) takes renderer_detile's flag */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
                                          * the sea, so a pixel neither covers shows (swell
                                          * --debug uncovered, the frame tests); default 0: a
@@ -59,6 +61,7 @@ struct renderer_stats {
                                          * are nearly flat there, before its 1x1 level */
     int run_lod;                        /* pattern tables fetched at one LOD per run */
     int vtf;                            /* grid built and displaced in the vertex shader */
+    int detile;                         /* 1: the lattice of random offsets is on */
     double camera_raise_m;              /* the last frame drew the camera this much higher, m:
                                          * it was less than CAMERA_CLEARANCE_M above the local
                                          * surface (renderer_frame) */
@@ -76,6 +79,9 @@ int  renderer_frame(struct renderer *r, const struct camera *cam, double t_s, in
  * map (about 11 M instructions at 256^2) and the automatic exposure; not for every frame. */
 int  renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err);
 void renderer_get_stats(const struct renderer *r, struct renderer_stats *out);
+/* 1 when the renderer reads the patterns through the lattice (desc detile resolved): the flag
+ * sea.h's query takes to give the surface this renderer draws. */
+int  renderer_detile(const struct renderer *r);
 /* One line per choice made (tier, geometry path, texture path, shading) into buf. */
 void renderer_describe(const struct renderer *r, char *buf, size_t size);
 void renderer_destroy(struct renderer *r);
@@ -84,5 +90,7 @@ const char *render_quality_name(int q);
 int render_quality_from_name(const char *name);
 const char *geometry_kind_name(int g);
 int geometry_kind_from_name(const char *name);
+const char *detile_mode_name(int m);
+int detile_mode_from_name(const char *name);
 
 #endif

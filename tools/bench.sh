@@ -15,8 +15,9 @@
 # table), BENCH_WARMUP (10), BENCH_MINUTES (15: if the matrix is projected to take longer, the
 # warm-up is cut to 2 frames, never the timed frames), BENCH_CALLGRIND (1; 0 skips it),
 # BENCH_CG_FRAMES (4 frames per callgrind run), BENCH_CG_TIERS and BENCH_CG_PATHS (the tiers and
-# paths counted under callgrind, default the matrix's), BENCH_DETILE ("on": swell --detile; "on
-# off" measures both, the cost of the lattice of random offsets), BENCH_DOCS (docs).
+# paths counted under callgrind, default the matrix's), BENCH_DETILE ("auto", swell's default:
+# the lattice of random offsets on in high quality, off in low; "on off" measures both ways, what
+# the lattice costs), BENCH_DOCS (docs).
 set -u
 docs_only=0
 if [ "${1:-}" = "--docs-only" ]; then docs_only=1; shift; fi
@@ -29,7 +30,7 @@ scenes=${BENCH_SCENES:-calm rough}
 paths=${BENCH_PATHS:-surface 1km 10km}
 qualities=${BENCH_QUALITIES:-low high}
 tiers=${BENCH_TIERS:-gles2-min gles2-ext gles3}
-detiles=${BENCH_DETILE:-on}
+detiles=${BENCH_DETILE:-auto}
 size=${BENCH_SIZE:-1280x720}
 frames=${BENCH_FRAMES:-100}
 warmup=${BENCH_WARMUP:-10}
@@ -156,7 +157,7 @@ done_n=0; failed=0
 t_matrix=$(now)
 for s in $scenes; do for p in $paths; do for q in $qualities; do for t in $tiers; do
     for d in $detiles; do
-    name="$s-$p-$q-$t$([ "$d" = on ] || echo "-detile-$d")"
+    name="$s-$p-$q-$t$([ "$d" = auto ] || echo "-detile-$d")"
     t0=$(now)
     if "$swell" --platform surfaceless --size "$size" --tables "$out/tables/$s" --scene "$s" \
         --path "$p" --quality "$q" --tier "$t" --detile "$d" --time 0 --fps 30 --bench \
@@ -223,8 +224,11 @@ if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
     # A twentieth of the frame size: the same aspect ratio, so the same projected grid.
     cg_w=$(( ${size%x*} / 20 )); cg_h=$(( ${size#*x} / 20 ))
     [ "$cg_w" -ge 16 ] || cg_w=16; [ "$cg_h" -ge 16 ] || cg_h=16
-    for t in $cg_tiers; do for p in $cg_paths; do for d in $detiles; do
-        n="$t-$p$([ "$d" = on ] || echo "-detile-$d")"
+    # the grid's work depends on the lattice, which auto turns on in high quality and off in
+    # low: both counted then, each scene takes its own
+    cg_detiles=$(for d in $detiles; do [ "$d" = auto ] && echo on off || echo "$d"; done | tr ' ' '\n' | sort -u)
+    for t in $cg_tiers; do for p in $cg_paths; do for d in $cg_detiles; do
+        n="$t-$p-detile-$d"
         f="$out/callgrind/$n.out"
         if GALLIUM_DRIVER=softpipe valgrind --tool=callgrind --callgrind-out-file="$f" \
             --collect-atstart=no $toggles "$swell" --platform surfaceless --size "${cg_w}x$cg_h" \

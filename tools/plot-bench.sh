@@ -1,8 +1,8 @@
 #!/bin/bash
 # plot-bench.sh RESULTS.json OUT.png - median frame time against camera altitude, one line per
 # tier and quality (the mean over the sea states), and the baseline quad, from tools/bench.sh's
-# results (the scenes with the lattice on, swell --detile on). Needs jq and gnuplot (Debian
-# gnuplot-nox).
+# results (the scenes as swell draws them by default, --detile auto: the lattice of random offsets
+# on in high quality, off in low). Needs jq and gnuplot (Debian gnuplot-nox).
 set -eu
 results=$1
 png=$2
@@ -12,7 +12,7 @@ trap 'rm -rf "$tmp"' EXIT
 # Camera altitude of each scripted path (src/camera.c camera_path_at), m.
 jq -r '
   def alt: if . == "surface" then 5 elif . == "1km" then 1000 elif . == "10km" then 10000 else null end;
-  [.scenes[] | select(.error == null and .ms_median != null and (.detile // "on") == "on")] as $s |
+  [.scenes[] | select(.error == null and .ms_median != null and ((.detile // "on") == "on") == (.quality == "high"))] as $s |
   ($s | group_by(.tier, .quality)[] |
      "# \(.[0].tier) \(.[0].quality)",
      (group_by(.path)[] | "\(.[0].path | alt) \(map(.ms_median) | add / length) \(map(.ms_p95) | add / length)"),
@@ -20,7 +20,7 @@ jq -r '
   "# quad baseline",
   ($s | group_by(.path)[] | "\(.[0].path | alt) \(map(.baseline_quad_ms) | add / length) 0"),
   ""' "$results" >"$tmp/data"
-jq -r '[.scenes[] | select(.error == null and .ms_median != null and (.detile // "on") == "on")] | group_by(.tier, .quality)[] |
+jq -r '[.scenes[] | select(.error == null and .ms_median != null and ((.detile // "on") == "on") == (.quality == "high"))] | group_by(.tier, .quality)[] |
        "\(.[0].tier) \(.[0].quality)"' "$results" >"$tmp/titles"
 n=$(wc -l <"$tmp/titles")
 [ "$n" -gt 0 ] || { echo "plot-bench: no measured scenes in $results" >&2; exit 1; }

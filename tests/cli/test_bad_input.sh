@@ -137,7 +137,7 @@ values swell --quality ultra "" LOW
 values swell --geometry mesh "" GRID
 values swell --tier gles4 "" GLES3 gles2
 values swell --lod run "" PIXEL per-pixel
-values swell --detile yes "" ON 1
+values swell --detile yes "" ON 1 AUTO
 values swell --mode 0x0 15x480 640x480@0 640x480@1001 640x480@nan 640x480@ abc ""
 values swell --kms-api modern "" ATOMIC
 needs_value swell --device

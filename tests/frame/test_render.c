@@ -134,7 +134,9 @@ static int g_draws_wc_const; /* renderer_stats.sea_draws_wc_const of the last re
 static int g_draws_resolved_drop; /* renderer_stats.sea_draws_resolved_drop of the last render */
 static int g_vtf_used;       /* renderer_stats.vtf of the last render */
 static int g_no_sky;         /* renderer_desc.no_sky */
-static int g_no_detile;      /* renderer_desc.no_detile */
+static int g_no_detile;      /* renderer_desc.detile OFF, else ON... */
+static int g_detile_mode;    /* ...unless this is set: enum detile_mode + 1 */
+static int g_detile_used;    /* renderer_stats.detile of the last render */
 static float g_bias_max;     /* when > 0: gpu_caps.max_lod_bias, as a device with that limit */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
@@ -162,13 +164,14 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.keep_resolved = g_keep_resolved;
     d.debug_uncovered = 1;
     d.no_sky = g_no_sky;
-    d.no_detile = g_no_detile;
+    d.detile = g_detile_mode ? g_detile_mode - 1 : g_no_detile ? DETILE_MODE_OFF : DETILE_MODE_ON;
     rc = renderer_create(&d, &r, &err);
     if (rc)
         fail_msg("renderer_create: %s", err.msg);
     struct renderer_stats st;
     renderer_get_stats(r, &st);
     g_vtf_used = st.vtf;
+    g_detile_used = st.detile;
     if (g_move_sun[0] > 0.0f && (rc = renderer_set_sun(r, g_move_sun[0], g_move_sun[1], &err)))
         fail_msg("renderer_set_sun: %s", err.msg);
     assert_int_equal(fx.ph.be->begin_frame(fx.ph.p, &err), 0);
@@ -308,7 +311,7 @@ static int reset_fixture(void **state)
     fx.tables = fx.synthetic;
     g_exposure = 0.0f;
     g_move_sun[0] = g_move_sun[1] = 0.0f;
-    g_cpu_geometry = g_fetch_all = g_pixel_lod = g_keep_resolved = g_no_sky = g_no_detile = 0;
+    g_cpu_geometry = g_fetch_all = g_pixel_lod = g_keep_resolved = g_no_sky = g_no_detile = g_detile_mode = 0;
     g_bias_max = 0.0f;
     return 0;
 }
@@ -826,7 +829,7 @@ static void test_run_lod(void **state)
 
 /* Where the tier has vertex texture fetch: the grid built and displaced in ocean.vert against
  * the same tier's CPU grid (grid.c), same scene: the two geometries agree to RMSE < 1 / 255,
- * with the lattice of random offsets (detile.h) and without it (renderer_desc no_detile), and
+ * with the lattice of random offsets (detile.h) and without it (renderer_desc detile OFF), and
  * the two lattice settings draw different seas. */
 static void test_vtf_geometry(void **state)
 {
@@ -861,6 +864,25 @@ static void test_vtf_geometry(void **state)
         }
     }
     g_no_detile = 0;
+}
+
+/* --detile auto: the lattice on in high quality, off in low (renderer.h detile_mode); on and
+ * off as asked in either. */
+static void test_detile_auto(void **state)
+{
+    struct camera c;
+    (void)state;
+    surface_camera(&c);
+    static const int want[DETILE_MODE_COUNT][QUALITY_COUNT] = { { 1, 0 }, { 1, 1 }, { 0, 0 } };
+    for (int m = 0; m < DETILE_MODE_COUNT; m++)
+        for (int q = 0; q < QUALITY_COUNT; q++) {
+            g_detile_mode = m + 1;
+            render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img, NULL);
+            print_message("--detile %s, %s quality: lattice %s\n", detile_mode_name(m),
+                          render_quality_name(q), g_detile_used ? "on" : "off");
+            assert_int_equal(g_detile_used, want[m][q]);
+        }
+    g_detile_mode = 0;
 }
 
 /* Rows where a pattern's patch is smaller than a pixel take its top mip level as a constant
@@ -977,6 +999,7 @@ int main(void)
         cmocka_unit_test_teardown(test_tiers, reset_fixture),
         cmocka_unit_test_teardown(test_horizon_row, reset_fixture),
         cmocka_unit_test_teardown(test_bias_limit, reset_fixture),
+        cmocka_unit_test_teardown(test_detile_auto, reset_fixture),
         cmocka_unit_test_teardown(test_vtf_geometry, reset_fixture),
         cmocka_unit_test_teardown(test_fetch_runs, reset_fixture),
         cmocka_unit_test_teardown(test_resolved_drop, reset_fixture),

@@ -13,7 +13,7 @@
  * SWELL_TILING_PNG=DIR writes each view for a look.
  *
  * Every view with visible texture is held to the limit; with the lattice off (renderer_desc
- * no_detile, swell --detile off) the views from above must fail it, as before the lattice.
+ * detile OFF, swell --detile off) the views from above must fail it, as before the lattice.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -297,7 +297,7 @@ static void open_sea(const char *preset, int no_detile, struct swell_tables *t, 
     struct renderer_desc d = { .tables = t, .gpu = gpu, .quality = QUALITY_HIGH };
     d.sun_elev_deg = 45.0f;
     d.sun_azim_deg = 90.0f;
-    d.no_detile = no_detile;
+    d.detile = no_detile ? DETILE_MODE_OFF : DETILE_MODE_ON;
     if (renderer_create(&d, r, &err))
         fail_msg("renderer_create: %s", err.msg);
 }
