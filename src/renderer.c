@@ -197,51 +197,41 @@ struct renderer {
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
 static const char *const geometry_names[GEOMETRY_COUNT] = { "grid", "patches" };
-
-const char *render_quality_name(int q)
-{
-    return q >= 0 && q < QUALITY_COUNT ? quality_names[q] : "?";
-}
-
-int render_quality_from_name(const char *name)
-{
-    for (int i = 0; name && i < QUALITY_COUNT; i++)
-        if (strcmp(name, quality_names[i]) == 0)
-            return i;
-    return -1;
-}
-
 static const char *const detile_names[DETILE_MODE_COUNT] = { "auto", "on", "off" };
 
-const char *detile_mode_name(int m)
+/* An enum's name and its value from a name (-1 if none) through its table of n names. */
+static const char *enum_name(const char *const *names, int n, int v)
 {
-    return m >= 0 && m < DETILE_MODE_COUNT ? detile_names[m] : "?";
+    return v >= 0 && v < n ? names[v] : "?";
 }
 
-int detile_mode_from_name(const char *name)
+static int enum_from_name(const char *const *names, int n, const char *name)
 {
-    for (int i = 0; name && i < DETILE_MODE_COUNT; i++)
-        if (strcmp(name, detile_names[i]) == 0)
+    for (int i = 0; name && i < n; i++)
+        if (strcmp(name, names[i]) == 0)
             return i;
     return -1;
+}
+
+const char *render_quality_name(int q) { return enum_name(quality_names, QUALITY_COUNT, q); }
+int render_quality_from_name(const char *name)
+{
+    return enum_from_name(quality_names, QUALITY_COUNT, name);
+}
+const char *geometry_kind_name(int g) { return enum_name(geometry_names, GEOMETRY_COUNT, g); }
+int geometry_kind_from_name(const char *name)
+{
+    return enum_from_name(geometry_names, GEOMETRY_COUNT, name);
+}
+const char *detile_mode_name(int m) { return enum_name(detile_names, DETILE_MODE_COUNT, m); }
+int detile_mode_from_name(const char *name)
+{
+    return enum_from_name(detile_names, DETILE_MODE_COUNT, name);
 }
 
 int renderer_detile(const struct renderer *r)
 {
     return r->d.detile == DETILE_MODE_ON;
-}
-
-const char *geometry_kind_name(int g)
-{
-    return g >= 0 && g < GEOMETRY_COUNT ? geometry_names[g] : "?";
-}
-
-int geometry_kind_from_name(const char *name)
-{
-    for (int i = 0; name && i < GEOMETRY_COUNT; i++)
-        if (strcmp(name, geometry_names[i]) == 0)
-            return i;
-    return -1;
 }
 
 static void resolve(struct renderer_desc *d)
