@@ -48,6 +48,18 @@ void detile_offsets(vec3 t, out vec3 ox, out vec3 oy)
     oy = (b - DETILE_OFFSETS * hi) * (1.0 / DETILE_OFFSETS);
 }
 
+// Effective Fresnel, Bruneton 2010 eq. 26, of the bumped view's exact Fresnel f (Hu's texture A)
+// for a slope standard deviation sig in the view direction: Schlick's (1 - cos)^5 is
+// (f - R0) / (1 - R0), raised to exp(-2.69 sig) as the equation has it (fresnel.c
+// fresnel_effective_tex; test_glsl compares the two on the GPU). R0 = fresnel_exact(1, 1.333).
+#define FRESNEL_R0 0.020373
+float fresnel_eff(float f, float sig)
+{
+    float s = max((f - FRESNEL_R0) * (1.0 / (1.0 - FRESNEL_R0)), 1e-4);
+    return FRESNEL_R0 + (1.0 - FRESNEL_R0) * exp2(exp(-2.69 * sig) * log2(s)) /
+                        (1.0 + 22.7 * sig * sqrt(sig));
+}
+
 // Stereographic sky-map coordinates of a direction (Bruneton 2010 §5.2): zenith at the centre,
 // horizon on the inscribed circle. Directions below the horizon use the horizon.
 vec2 sky_map_uv(vec3 r)

@@ -214,9 +214,9 @@ void main()
     // Slope variance in the view direction (eq. 25), its x weight from the vertex.
     float sig_v = sqrt(mix(var.y, var.x, v_sun.w));
 
-    // Effective Fresnel, eq. 26, with the exact Fresnel of the texture for Schlick's term.
-    const float R0 = 0.02;
-    float f_eff = R0 + (ftex.a - R0) * exp(-2.69 * sig_v) / (1.0 + 22.7 * sig_v * sqrt(sig_v));
+    // Effective Fresnel, eq. 26 (common.glsl), with the exact Fresnel of the texture for
+    // Schlick's term.
+    float f_eff = fresnel_eff(ftex.a, sig_v);
 
     // Sun: Ross BRDF, eq. 15: the Gaussian slope density at the half vector's slope zeta_h,
     // centred on the pixel's mean slope, times the vertex's Fresnel / shadowing factor.

@@ -119,6 +119,14 @@ double fresnel_effective_fit(double cos_v, double sigma2)
                              (1.0 + 22.7 * pow(sv, 1.5));   /* eq. 26 */
 }
 
+double fresnel_effective_tex(double f, double sigma)
+{
+    double r0 = fresnel_exact(1.0, SWELL_WATER_IOR), sv = sigma > 0.0 ? sigma : 0.0;
+    double s = (f - r0) / (1.0 - r0);
+    s = s > 1e-4 ? s : 1e-4;   /* as the shader: no pow of 0 */
+    return r0 + (1.0 - r0) * pow(s, exp(-2.69 * sv)) / (1.0 + 22.7 * pow(sv, 1.5));
+}
+
 static int check_size(int size, const char *name, struct swell_err *err)
 {
     if (size < 2 || size > 1024 || (size & (size - 1)))

@@ -33,6 +33,13 @@ double fresnel_effective(double cos_v, double sigma2);
 double fresnel_effective_schlick(double cos_v, double sigma2);
 double fresnel_effective_fit(double cos_v, double sigma2);
 
+/* Eq. 26 as the fragment shader evaluates it (common.glsl fresnel_eff, tested against this on
+ * the GPU): the view's cos_v unknown per pixel, Schlick's (1 - cos_v)^5 is taken from the exact
+ * Fresnel f of the bumped view vector (Hu's texture), (f - R) / (1 - R), and raised to
+ * exp(-2.69 sigma): R + (1 - R) ((f - R) / (1 - R))^exp(-2.69 sigma) / (1 + 22.7 sigma^1.5),
+ * R = fresnel_exact(1, n); sigma the slope standard deviation in the view direction. */
+double fresnel_effective_tex(double f, double sigma);
+
 /* Hu §5.1 Fresnel texture, name "fresnel", size x size RGBA8 (size a power of two in
  * [2, 1024]), 1 layer, 1 level. Index: the unit view vector V = (vx, vy, vz) towards the eye
  * in a frame whose z axis is the (unbumped) surface normal (Hu: the view vector bumped by

@@ -928,8 +928,10 @@ static void test_fetch_runs(void **state)
  * means are nearly flat well before the 1x1 level (renderer.c DROP_RESOLVED): runs drop it
  * there, and the image stays that of runs that keep it to its 1x1 level. Every LOD path:
  * the per-pixel LOD of GPUs, and llvmpipe's one level per run (per-level textures), each at
- * gles2-min (mediump) and gles3: RMSE < 1.2 / 255 (measured 0.35-0.95; with 10 % for 2 %,
- * 1.73, and 30 %, 3.43). (Every pattern fetched everywhere is no reference here: at 1 km
+ * gles2-min (mediump) and gles3: RMSE < 1.5 / 255 (measured 0.35-0.95 with eq. 26 as the
+ * shader had it; with eq. 26 as published, which reflects more sky at grazing and so shows a
+ * slope change more, 0.47-1.33, and with 10 % for 2 %, 2.05: the drop's seam is issue 14's
+ * item 1; before, 10 % gave 1.73 and 30 % 3.43). (Every pattern fetched everywhere is no reference here: at 1 km
  * the small patterns' whitecaps alias at their 2x2 levels, and in mediump their coordinates
  * grow to thousands of patches at the horizon, which fp16 resolves to whole patches.) */
 static void test_resolved_drop(void **state)
@@ -963,7 +965,7 @@ static void test_resolved_drop(void **state)
                           "255\n", cases[ci].name, render_quality_name(q), g_draws,
                           g_draws_resolved_drop, draws, rmse);
             assert_true(g_draws_resolved_drop > 0);
-            assert_true(rmse < 1.2);
+            assert_true(rmse < 1.5);
         }
 }
 
