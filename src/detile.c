@@ -78,6 +78,11 @@ void detile_taps(int pattern, double u, double v, struct detile_taps *t)
                      (float)(qx - fx), (float)(qy - fy), t);
 }
 
+void detile_taps_off(struct detile_taps *t)
+{
+    *t = (struct detile_taps){ .w = { 1.0f, 0.0f, 0.0f } };
+}
+
 static double wrap(double x, double n)
 {
     double m = fmod(x, n);

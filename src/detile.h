@@ -69,6 +69,10 @@ struct detile_taps {
 };
 void detile_taps(int pattern, double u, double v, struct detile_taps *t);
 
+/* The taps without the lattice (renderer_desc detile OFF): the first at no offset with weight
+ * 1, the others weight 0. */
+void detile_taps_off(struct detile_taps *t);
+
 /* The same for a point given by its hash cell (hx, hy) (its lattice cell plus the pattern's
  * shift, any integers: taken modulo DETILE_N) and the position (fx, fy) in [0, 1) inside it:
  * what the camera-relative stages use, with detile_camera_shift. hash: detile_hash_table's, or

@@ -97,7 +97,7 @@ static inline void detile_at(const struct detile_frame *f, float rx, float ry,
                              struct detile_taps *t)
 {
     if (!f->hash) {
-        *t = (struct detile_taps){ .w = { 1.0f, 0.0f, 0.0f } };
+        detile_taps_off(t);
         return;
     }
     float qx = f->q0x + rx * f->qk, qy = f->q0y + ry * f->qk;

@@ -47,7 +47,7 @@ void sea_displacement(const struct swell_tables *t, int detile, double x, double
         if (detile)
             detile_taps(i, x / l, y / l, &tp);
         else
-            tp = (struct detile_taps){ .w = { 1.0f, 0.0f, 0.0f } };
+            detile_taps_off(&tp);
         for (int j = 0; j < (detile ? 3 : 1); j++) {
             double u = (x / l + tp.du[j]) * tb->width - 0.5;
             double v = (y / l + tp.dv[j]) * tb->height - 0.5;

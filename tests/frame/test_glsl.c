@@ -16,6 +16,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 #include "fresnel.h"
+#include "fsutil.h"
 #include "gpu.h"
 #include "platform.h"
 #include "shader.h"
@@ -27,21 +28,17 @@
 static struct platform_handle g_ph;
 static char g_dir[512];
 
-/* dst/name from src_dir/name */
+/* g_dir/name from src_dir/name (fsutil.h) */
 static void copy_file(const char *src_dir, const char *name)
 {
     char a[600], b[600];
-    snprintf(a, sizeof a, "%s/%s", src_dir, name);
-    snprintf(b, sizeof b, "%s/%s", g_dir, name);
-    FILE *in = fopen(a, "rb"), *out = fopen(b, "wb");
-    if (!in || !out)
-        fail_msg("copy %s -> %s failed", a, b);
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
-        assert_int_equal(fwrite(buf, 1, n, out), n);
-    fclose(in);
-    assert_int_equal(fclose(out), 0);
+    uint8_t *data = NULL;
+    size_t n = 0;
+    struct swell_err err = { 0 };
+    if (fs_join(a, sizeof a, src_dir, name, &err) || fs_join(b, sizeof b, g_dir, name, &err) ||
+        fs_read_file(a, 1u << 20, &data, &n, &err) || fs_write_atomic(b, data, n, &err))
+        fail_msg("copy %s/%s -> %s: %s", src_dir, name, g_dir, err.msg);
+    free(data);
 }
 
 /* Render fs over W x H at tier with uniform fn_in = in; out[y * W + x] = the value at pixel
@@ -147,9 +144,13 @@ int main(void)
     copy_file("tests/glsl", "fn.vert");
     copy_file("tests/glsl", "fn_fresnel_eff.frag");
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
-    char cmd[700];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);
-    if (system(cmd) != 0)
+    static const char *const copies[] = { "common.glsl", "fn.vert", "fn_fresnel_eff.frag" };
+    for (size_t k = 0; k < sizeof copies / sizeof copies[0]; k++) {
+        char path[600];
+        if (snprintf(path, sizeof path, "%s/%s", g_dir, copies[k]) < (int)sizeof path)
+            unlink(path);
+    }
+    if (rmdir(g_dir) != 0)
         fprintf(stderr, "test_glsl: could not remove %s\n", g_dir);
     platform_close(&g_ph);
     return rc;

@@ -264,7 +264,8 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                     double wgt = grid_filter_weight(2.0f, 4.0f, (float)(lambda / fmax(foot, 1e-6)));
                     double u = off[p][0] + rx / s.pattern[p].size_m;
                     double v = off[p][1] + ry / s.pattern[p].size_m;
-                    struct detile_taps tp = { .w = { 1.0f, 0.0f, 0.0f } };
+                    struct detile_taps tp;
+                    detile_taps_off(&tp);
                     if (detile)   /* read at three offsets blended (detile.h) */
                         detile_taps(p, (cx + rx) / s.pattern[p].size_m,
                                     (cy + ry) / s.pattern[p].size_m, &tp);
@@ -288,7 +289,8 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                 double u = off[0][0] + rx / s.pattern[0].size_m, v = off[0][1] + ry / s.pattern[0].size_m;
                 /* three taps blended (detile.h): means by w, variances by w^2, the foam memory's
                  * deviation from its mean over the patch */
-                struct detile_taps tp = { .w = { 1.0f, 0.0f, 0.0f } };
+                struct detile_taps tp;
+                detile_taps_off(&tp);
                 if (detile)
                     detile_taps(0, (cx + rx) / s.pattern[0].size_m,
                                 (cy + ry) / s.pattern[0].size_m, &tp);
