@@ -30,9 +30,15 @@ uniform vec4 slope_bias[4];
 uniform vec3 detile_shift[4];       // per slot: the camera's lattice cell modulo DETILE_N plus
                                     // the pattern's shift (detile.h), the cell's colour shift
 uniform vec4 detile_atlas;          // 1 / the atlas size, the hash rows' origin (v)
-uniform vec2 slope_mean[4];         // per slot: the mean slope over its patch (its top level)
+uniform vec4 slope_mean[4];         // per slot: the mean slope over its patch (its top level);
+                                    // the mean within-texel variance at the level fetched, xy
+uniform vec4 slot_lod[4];           // per slot: its weight's terms (slot_weight)
+uniform vec2 lod_cmax[4];           // per slot: the largest contrast factor, slopes, whitecaps
 #ifdef QUALITY_HIGH
-uniform float wc_mean[4];           // per slot: the foam memory's mean over its patch
+uniform vec2 slope_var[4];          // per slot: the slope variance over its patch, xy
+uniform vec3 wc_mean[4];            // per slot: the foam memory's mean over its patch, its
+                                    // within-texel variance at the level, over the patch
+uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
 uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
@@ -50,11 +56,14 @@ uniform vec3 haze_sun;              // the sun's direction xy; Henyey-Greenstein
 uniform vec3 haze_tau_ratio;        // each channel's optical depth over green's
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here
-varying vec3 v_extra;               // with no whitecap fetched the coverage (ocean.vert), else
-                                    // 0; sky LOD offset; the
-                                    // haze's transmittance (ocean.vert haze_t)
+varying vec4 v_extra;               // with no whitecap fetched the coverage (ocean.vert), else
+                                    // 0; sky LOD offset; the haze's transmittance (ocean.vert
+                                    // haze_t); the footprint (ocean.vert lod_foot)
+#define V_FOOT v_extra.w
 #else
 varying vec4 v_fog;                 // ocean.vert haze(): in-scattered light (display), its T
+varying float v_foot;
+#define V_FOOT v_foot
 #endif
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
 varying vec4 v_lin_dx;              // ...and their derivatives in s.x
@@ -136,38 +145,60 @@ void detile(vec2 uv, vec3 sh)
 #define TAPS(tex, uv) TAP(tex, uv, x), TAP(tex, uv, y), TAP(tex, uv, z)
 #endif
 
-#ifdef QUALITY_HIGH
-// The blend of three taps of a moment table (detile.h): means by w_j about the patch's mean m
-// (m + sum_j w_j (s_j - m)), variances by w_j^2.
-void add_slope(vec4 b, vec4 sc, vec2 m, vec4 a0, vec4 a1, vec4 a2)
+// No seam where the renderer changes how it reads a pattern (renderer.c set_slot_lods): a
+// slot's fetched deviation from its patch's mean enters with the weight g of its terms l,
+// clamp(l.x f + l.y, 0, 1) clamp(l.w + l.z f, 0, cmax) at the pixel's footprint f (log2 m): the first factor
+// fades it out over the rows before those that stop fetching it, the second, in a run fetching
+// one whole mip level (SWELL_RUN_LOD), scales it to the contrast of the level the footprint
+// asks for (1 elsewhere). The within-texel variance v fetched fades likewise towards its mean
+// W over the level's texels, and the variance the means lose moves to within the pixel: with
+// T the patch's variance (the top level's, = W + the means' variance), the pixel's is
+// g v + (1 - g) W + (1 - g^2) (T - W), whose mean over the patch is T at every g. So the mean
+// radiance stays and at g = 0 the slot is its patch's constants, as where it is not fetched.
+float slot_weight(vec4 l, float cmax)
 {
-    vec4 s0 = b + sc * a0, s1 = b + sc * a1, s2 = b + sc * a2;
-    g_ds += g_tw.x * s0.xy + g_tw.y * s1.xy + g_tw.z * s2.xy + (1.0 - dot(g_tw, vec3(1.0))) * m;
-    vec3 w2 = g_tw * g_tw;
-    g_var += w2.x * max(s0.zw - s0.xy * s0.xy, vec2(0.0)) +
-             w2.y * max(s1.zw - s1.xy * s1.xy, vec2(0.0)) +
-             w2.z * max(s2.zw - s2.xy * s2.xy, vec2(0.0));
+    float f = clamp(V_FOOT, -30.0, 30.0);
+    return clamp(l.x * f + l.y, 0.0, 1.0) * clamp(l.w + l.z * f, 0.0, cmax);
 }
 
-void add_whitecap(vec4 b, vec4 sc, float mu, vec4 a0, vec4 a1, vec4 a2)
+#ifdef QUALITY_HIGH
+// The blend of three taps of a moment table (detile.h): means by w_j about the patch's mean m
+// (m + sum_j w_j (s_j - m)), variances by w_j^2; both weighted by g (slot_weight) about the
+// level's mean within-texel variance m.zw, with t the patch's variance.
+void add_slope(vec4 b, vec4 sc, vec4 m, vec2 t, float g, vec4 a0, vec4 a1, vec4 a2)
+{
+    vec4 s0 = b + sc * a0, s1 = b + sc * a1, s2 = b + sc * a2;
+    g_ds += m.xy + g * (g_tw.x * s0.xy + g_tw.y * s1.xy + g_tw.z * s2.xy -
+                        dot(g_tw, vec3(1.0)) * m.xy);
+    vec3 w2 = g_tw * g_tw;
+    vec2 v = w2.x * max(s0.zw - s0.xy * s0.xy, vec2(0.0)) +
+             w2.y * max(s1.zw - s1.xy * s1.xy, vec2(0.0)) +
+             w2.z * max(s2.zw - s2.xy * s2.xy, vec2(0.0));
+    g_var += g * v + (1.0 - g) * m.zw + (1.0 - g * g) * (t - m.zw);
+}
+
+void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
 {
     // Dupuy eq. 7-8 per pattern, on the foam memory m_i of k_i; the variance is summed per
     // pattern (sum <m_i^2> - <m_i>^2), the same uncorrelated-pattern assumption as eq. 8
-    // without its cross terms of the means. The taps blend m's deviation from its mean mu.
+    // without its cross terms of the means. The taps blend m's deviation from its mean mu.x;
+    // weighted by g as the slopes are (mu.y, mu.z: the level's mean within-texel variance,
+    // the patch's variance).
     vec4 k0 = b + sc * a0, k1 = b + sc * a1, k2 = b + sc * a2;
-    g_mu += mu + dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu));
-    g_kvar += dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
+    g_mu += mu.x + g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
+    float v = dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
                                         k2.y - k2.x * k2.x), vec3(0.0)));
+    g_kvar += g * v + (1.0 - g) * mu.y + (1.0 - g * g) * (mu.z - mu.y);
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
-#define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], TAPS(tex, uv))
-#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], TAPS(tex, uv))
+#define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))
+#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))
 #else
-// The single pass needs the mean slope only.
+// The single pass needs the mean slope only: m + g (sum_j w_j s_j - (sum_j w_j) m).
 #ifdef SWELL_NO_DETILE
-#define SLOPE(i, tex, uv) g_ds += slope_bias[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy
+#define SLOPE(i, tex, uv) g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (slope_bias[i].xy - slope_mean[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy)
 #else
-#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i]) + slope_mean[i] + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy)
+#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i].xy) + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy))
 #endif
 #endif
 

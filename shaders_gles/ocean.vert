@@ -113,6 +113,8 @@ uniform vec2 pattern_uv_offset[4];      // per fragment-shader pattern slot
 uniform float pattern_inv_size[4];      // 1 / L_i, 1/m
 
 uniform vec3 lin_s0;        // xy: mean slope of every fragment pattern slot; z: step h
+uniform vec2 lod_frame;     // the camera's altitude squared, log2(pixel angle / altitude):
+                            // lod_foot's terms (renderer.c set_lod_frame)
 uniform vec3 sun_dir_world;
 uniform vec3 haze_tau;      // aerial perspective (sky.h sky_haze): vertical optical depth,
 uniform vec2 haze_frame;    // the air mass per metre of path from the camera's height:
@@ -139,8 +141,11 @@ uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's
 #endif
 varying vec4 v_sun;
 varying vec4 v_base;
-varying vec3 v_extra;       // coverage (no whitecap fetched), sky LOD offset, the haze's transmittance
-                            // (so high quality's varyings fit GLES2's 8 rows)
+varying vec4 v_extra;       // coverage (no whitecap fetched), sky LOD offset, the haze's
+                            // transmittance, lod_foot (so high quality's varyings fit GLES2's
+                            // 8 rows)
+#else
+varying float v_foot;       // lod_foot
 #endif
 #if FS_PATTERNS > 0
 varying vec2 v_uv0;
@@ -200,6 +205,15 @@ vec4 haze(vec3 p)
     return vec4(tone_map(sky_h) * (1.0 - t.g), t.g);
 }
 #endif
+
+// log2 of the pixel footprint along the view at rest point p on the sea plane, m: (d^2 + a^2) /
+// a times the pixel's angle at horizontal distance d from a camera at altitude a, as the
+// renderer takes it per row (renderer.c row_footprint); ocean.frag fades each pattern by it
+// where the renderer stops fetching it, and matches its run's mip level to it.
+float lod_foot(vec2 p)
+{
+    return log2(dot(p, p) + lod_frame.x) + lod_frame.y;
+}
 
 #ifdef QUALITY_HIGH
 // Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
@@ -272,8 +286,8 @@ void main()
     v_base = vec4(a_geo_slope.zw + const_slope.zw + unresolved_var, a_geo_k.xy + const_k.xy);
     // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
     vec3 r = reflect(-v, n);
-    v_extra = vec3(0.0, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))),
-                   haze_t(a_pos));
+    v_extra = vec4(0.0, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))),
+                   haze_t(a_pos), lod_foot(a_rest));
 #if FS_WHITECAPS == 0
     // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
     // moments alone, so it is evaluated here and v_extra.x carries it (exact where no pattern
@@ -295,6 +309,7 @@ void main()
 #endif
 #ifndef QUALITY_HIGH
     v_fog = haze(a_pos);
+    v_foot = lod_foot(a_rest);
 #endif
     gl_Position = world_to_clip * vec4(a_pos, 1.0);
 }

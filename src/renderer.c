@@ -39,7 +39,7 @@ enum ocean_uniform {
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_SUN,
     OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
-    OU_COUNT
+    OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -50,7 +50,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
     "haze_sun", "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
-    "slope_mean"
+    "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax"
 };
 
 enum sky_uniform {
@@ -88,6 +88,22 @@ static const char *const sky_uniform_names[SU_COUNT] = {
  * k moments (Dupuy eq. 7-8) are then close to the patch's, so the coverage of eq. 6 from the
  * patch's constants differs little, while each whitecap fetch costs as much as a slope fetch. */
 #define WC_DROP_FOOTPRINT 0.125f
+/* ...unless renderer_desc keep_resolved: then at their 1x1 level, with the slopes. */
+#define WC_DROP(r) ((r)->d.keep_resolved ? DROP_FOOTPRINT : WC_DROP_FOOTPRINT)
+/* No pattern stops at a row (ocean.frag slot_weight): its fetched deviation fades out over this
+ * many octaves of footprint (mip levels) before the rows that no longer fetch it, ending this
+ * much before them (the shader's footprint is its vertex's, the renderer's a row's nearest). */
+#define FADE_LEVELS 1.0f
+#define FADE_MARGIN 0.1f
+/* The contrast gain of a run's level where it is half an octave coarser than the footprint
+ * (weight_terms). */
+#define RUN_BLUR_GAIN 1.41421356f
+/* 0: off. On, it met the seam metric better at 1 km (1.65 -> 1.18) but on tables of a few
+ * waves (test_render) the level contrasts are extreme: the gain drove the variance it takes
+ * back negative and the sun to a needle (white noise at gles2-min); runs vs per-pixel LOD
+ * RMSE 2.9 -> 4.6 at gles3. Off until the variance bookkeeping for gains above 1 is sound. */
+#define RUN_CONTRAST 0
+#define RUN_CONTRAST_MAX 2.0f
 
 /* Ocean program variants: k slots' slopes and the first kw <= k of their whitecaps fetched. */
 #define OCEAN_VARIANTS ((SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1))
@@ -138,6 +154,8 @@ struct fs_slot {
     float top_slope[4], top_k[2];     /* dequantised top mip level: mean, variance */
     float level_var[SLOT_LEVELS][2];  /* per mip level: mean within-texel slope variance x, y
                                        * of the first loop frame (set_run_lods, drop_lod) */
+    float level_kvar[SLOT_LEVELS];    /* ...and of the whitecap table's foam memory */
+    int top_level[2];                 /* the slope and whitecap tables' last levels */
     float log2_density[2];            /* log2 texels per metre of the slope, whitecap table */
     int drop_lod;                     /* from this level up the slope table resolves too
                                        * little to fetch (DROP_RESOLVED) */
@@ -388,6 +406,28 @@ static float log2_density(const struct swell_table *t, float size_m)
  * mip level of the slope table's first loop frame (Bruneton §4.1) the mean over its texels of
  * the within-texel variance <s^2> - <s>^2, x and y: what a pixel fetching that level resolves
  * below itself. */
+/* The mean over level l's texels of the first loop frame of the within-texel variance
+ * <m^2> - <m>^2 of channel cm, its second moment in channel cs; 0 where not RGBA8. */
+static float level_within_var(const struct swell_table *t, int l, int cm, int cs)
+{
+    if (l >= t->levels || t->format != FORMAT_RGBA8)
+        return 0.0f;
+    const uint8_t *px = t->data + table_offset(t, l, 0);
+    size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
+    double acc = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double m = quantize_decode(t, cm, px[4 * i + cm]);
+        double m2 = quantize_decode(t, cs, px[4 * i + cs]);
+        acc += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
+    }
+    return (float)(acc / (double)n);
+}
+
+static int top_level(const struct swell_table *t)
+{
+    return (t->levels < SLOT_LEVELS ? t->levels : SLOT_LEVELS) - 1;
+}
+
 static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
 {
     const struct swell_table *t = sl->slope;
@@ -395,23 +435,14 @@ static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
     sl->log2_density[0] = log2_density(t, size_m);
     sl->log2_density[1] = log2_density(sl->wc, size_m);
     for (int l = 0; l < SLOT_LEVELS; l++) {
-        sl->level_var[l][0] = sl->level_var[l][1] = 0.0f;
-        if (l >= t->levels || t->format != FORMAT_RGBA8)
-            continue;
-        const uint8_t *px = t->data + table_offset(t, l, 0);
-        size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
-        double acc[2] = { 0.0, 0.0 };
-        for (size_t i = 0; i < n; i++)
-            for (int c = 0; c < 2; c++) {
-                double m = quantize_decode(t, c, px[4 * i + c]);
-                double m2 = quantize_decode(t, c + 2, px[4 * i + c + 2]);
-                acc[c] += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
-            }
-        sl->level_var[l][0] = (float)(acc[0] / (double)n);
-        sl->level_var[l][1] = (float)(acc[1] / (double)n);
+        sl->level_var[l][0] = level_within_var(t, l, 0, 2);
+        sl->level_var[l][1] = level_within_var(t, l, 1, 3);
+        sl->level_kvar[l] = level_within_var(sl->wc, l, 0, 1);
     }
+    sl->top_level[0] = top_level(t);
+    sl->top_level[1] = top_level(sl->wc);
     /* The fraction resolved by the mip means at level l: 1 - within(l) / within(top). */
-    int top = (t->levels < SLOT_LEVELS ? t->levels : SLOT_LEVELS) - 1;
+    int top = sl->top_level[0];
     float total = sl->level_var[top][0] + sl->level_var[top][1];
     sl->drop_lod = SLOT_LEVELS;
     for (int l = top; l >= 0 && total > 0.0f; l--) {
@@ -1158,8 +1189,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     float ss[SWELL_MAX_PATTERNS][4] = { { 0 } }, sb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float cs[4] = { 0.0f, 0.0f, 0.0f, 0.0f }, ck[2] = { 0.0f, 0.0f };
-    float dsh[SWELL_MAX_PATTERNS][3] = { { 0 } }, wmu[SWELL_MAX_PATTERNS] = { 0 };
-    float smu[SWELL_MAX_PATTERNS][2] = { { 0 } };
+    float dsh[SWELL_MAX_PATTERNS][3] = { { 0 } };
     float sun[3], sea[3], foam[3], e = r->exposure;
     float unres[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
     for (int s = 0; s < r->nfs; s++) {
@@ -1175,9 +1205,6 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         inv[s] = 1.0f / r->t->pattern[sl->pattern].size_m;
         detile_camera_shift(sl->pattern, cam->pos[0], cam->pos[1],
                             1.0 / r->t->pattern[sl->pattern].size_m, dsh[s]);
-        wmu[s] = sl->top_k[0];
-        smu[s][0] = sl->top_slope[0];
-        smu[s][1] = sl->top_slope[1];
         memcpy(ss[s], sl->slope->scale, sizeof(ss[s]));
         memcpy(sb[s], sl->slope->bias, sizeof(sb[s]));
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
@@ -1199,8 +1226,6 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform4fv(u[OU_CONST_SLOPE], 1, cs);
     glUniform2fv(u[OU_CONST_K], 1, ck);
     glUniform3fv(u[OU_DETILE_SHIFT], SWELL_MAX_PATTERNS, &dsh[0][0]);
-    glUniform1fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, wmu);
-    glUniform2fv(u[OU_SLOPE_MEAN], SWELL_MAX_PATTERNS, &smu[0][0]);
     float atlas[4];
     atlas_hash_frame(r, atlas);
     glUniform4fv(u[OU_DETILE_ATLAS], 1, atlas);
@@ -1364,6 +1389,125 @@ static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float 
         bind_tex(UNIT_SKY, chain_at(&r->sky_tex, sky), -1);
 }
 
+/* log2 of the footprint (m, at a row's nearest vertex) from which slots_needed no longer
+ * fetches slot s with these arguments (slots are largest first: the least over slots 0..s);
+ * INFINITY where it always does. */
+static float slot_drop_foot(const struct renderer *r, int s, float drop, int resolved)
+{
+    float lf = INFINITY;
+    for (int j = 0; j <= s; j++) {
+        const struct fs_slot *sl = &r->slot[j];
+        float l = log2f(r->t->pattern[sl->pattern].size_m * drop);
+        /* nearest_level(lf + log2 RUN_LOD_ROW_MEAN, density) < drop_lod */
+        if (resolved && !r->d.keep_resolved && sl->drop_lod < SLOT_LEVELS)
+            l = fminf(l, (float)sl->drop_lod - 0.5f - sl->log2_density[0] -
+                             log2f(RUN_LOD_ROW_MEAN));
+        lf = fminf(lf, l);
+    }
+    return lf;
+}
+
+/* The variance of a table's mip means at level l: what its texels resolve below the whole
+ * patch, within(top) - within(l) (Bruneton §4.1). */
+static float means_var(const float *within, int stride, int l, int top)
+{
+    l = l < 0 ? 0 : l > top ? top : l;
+    return fmaxf(within[stride * top] - within[stride * l], 0.0f);
+}
+
+static float within_at(const float *within, int stride, int l, int top)
+{
+    return within[stride * (l < 0 ? 0 : l > top ? top : l)];
+}
+
+/* One table's weight terms (ocean.frag slot_weight) for a run: the fade to its drop footprint
+ * drop_lf and, at whole level lev (lev < 0: per-pixel LOD), the contrast of the level the
+ * footprint asks for. The ideal variance of the means at fractional level x is taken
+ * log-linear between whole levels, so at x = lev +- 0.5 the contrast sqrt(V(x) / V(lev)) is
+ * (V(lev +- 1) / V(lev))^(1/4), what the neighbouring run's level gives there: the runs meet
+ * at equal contrast. Between, it is linear in x. At x = lev - 0.5 the level is half an octave
+ * coarser than the pixel, so its bilinear texels change by 1 / sqrt(2) as much from pixel to
+ * pixel as the finer neighbour's: RUN_BLUR_GAIN more contrast there keeps the texture the
+ * viewer sees (|dI/dx|, test_seams) continuous across the runs, not only the variance
+ * (measured at rough 1 km, 45 deg down: 4-row window step 1.65 -> 1.18). Also the level of the means' variance the
+ * shader moves to within the pixel (the fade's middle at per-pixel LOD). */
+static int weight_terms(const float *within, int stride, int top, float density, float drop_lf,
+                        int lev, float out[4], float *cmax)
+{
+    *cmax = 1.0f;
+    out[0] = 0.0f;
+    out[1] = 1.0f;
+    if (isfinite(drop_lf)) {
+        out[0] = -1.0f / FADE_LEVELS;
+        out[1] = (drop_lf - FADE_MARGIN) / FADE_LEVELS;
+    }
+    out[2] = 0.0f;
+    out[3] = 1.0f;
+    if (lev < 0 || !RUN_CONTRAST)
+        return (int)floorf(drop_lf - FADE_MARGIN - 0.5f * FADE_LEVELS + density + 0.5f);
+    float v = means_var(within, stride, lev, top);
+    if (v > 0.0f) {
+        float lo = lev > 0 ? RUN_BLUR_GAIN * powf(means_var(within, stride, lev - 1, top) / v,
+                                                  0.25f)
+                           : 1.0f;
+        /* where a level has nearly no contrast left (a band ending within an octave, as in
+         * synthetic tables of a few waves) its texels hold no detail worth amplifying */
+        lo = fminf(lo, RUN_CONTRAST_MAX);
+        float hi = lev < top ? powf(means_var(within, stride, lev + 1, top) / v, 0.25f) : 0.0f;
+        out[2] = hi - lo;                                   /* per octave of footprint */
+        out[3] = lo + out[2] * (density - (float)lev + 0.5f);
+        /* no more than at x = lev - 0.5: a row's vertices reach beyond it, and the line
+         * extrapolated there overshoots */
+        *cmax = fmaxf(lo, hi);
+    }
+    return lev;
+}
+
+/* The slots' weights for a run fetching k slopes and kw whitecaps at the levels of key (with
+ * run_lod), the means (top level) and the variance of the means at the level the shader
+ * treats, and the footprint's terms for ocean.vert lod_foot (camera altitude alt, pixel angle
+ * pix, as draw_runs). */
+static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix)
+{
+    const GLint *u = r->ou[VARIANT(k, kw)];
+    float sl_lod[SWELL_MAX_PATTERNS][4] = { { 0 } }, wc_lod[SWELL_MAX_PATTERNS][4] = { { 0 } };
+    float smu[SWELL_MAX_PATTERNS][4] = { { 0 } }, wmu[SWELL_MAX_PATTERNS][3] = { { 0 } };
+    float svar[SWELL_MAX_PATTERNS][2] = { { 0 } }, cmax[SWELL_MAX_PATTERNS][2] = { { 0 } };
+    for (int s = 0; s < k && s < r->nfs; s++) {
+        const struct fs_slot *sl = &r->slot[s];
+        float drop = r->d.fetch_all ? INFINITY : slot_drop_foot(r, s, DROP_FOOTPRINT, 1);
+        float within[SLOT_LEVELS];   /* x + y: the contrast of both */
+        for (int l = 0; l < SLOT_LEVELS; l++)
+            within[l] = sl->level_var[l][0] + sl->level_var[l][1];
+        int lev = r->run_lod ? (int)((key >> (4 * s)) & 15u) : -1;
+        lev = weight_terms(within, 1, sl->top_level[0], sl->log2_density[0], drop, lev,
+                           sl_lod[s], &cmax[s][0]);
+        smu[s][0] = sl->top_slope[0];
+        smu[s][1] = sl->top_slope[1];
+        smu[s][2] = within_at(&sl->level_var[0][0], 2, lev, sl->top_level[0]);
+        smu[s][3] = within_at(&sl->level_var[0][1], 2, lev, sl->top_level[0]);
+        svar[s][0] = sl->top_slope[2];
+        svar[s][1] = sl->top_slope[3];
+        if (s >= kw)
+            continue;
+        float wdrop = r->d.fetch_all ? INFINITY
+                                     : fminf(drop, slot_drop_foot(r, s, WC_DROP(r), 0));
+        int wl = r->run_lod ? (int)((key >> (16 + 4 * s)) & 15u) : -1;
+        wl = weight_terms(sl->level_kvar, 1, sl->top_level[1], sl->log2_density[1], wdrop, wl,
+                          wc_lod[s], &cmax[s][1]);
+        wmu[s][0] = sl->top_k[0];
+        wmu[s][1] = within_at(sl->level_kvar, 1, wl, sl->top_level[1]);
+        wmu[s][2] = sl->top_k[1];
+    }
+    glUniform4fv(u[OU_SLOT_LOD], SWELL_MAX_PATTERNS, &sl_lod[0][0]);
+    glUniform4fv(u[OU_SLOPE_MEAN], SWELL_MAX_PATTERNS, &smu[0][0]);
+    glUniform4fv(u[OU_WC_LOD], SWELL_MAX_PATTERNS, &wc_lod[0][0]);
+    glUniform3fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
+    glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
+    glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
+    glUniform2f(u[OU_LOD_FRAME], alt * alt, log2f(pix / alt));
+}
+
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
  * run_lod, at the same levels). */
 static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
@@ -1390,7 +1534,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             } else {
                 k = slots_needed(r, d2, alt, pix, DROP_FOOTPRINT, 1);
                 early = k < slots_needed(r, d2, alt, pix, DROP_FOOTPRINT, 0);
-                kw = high ? slots_needed(r, d2, alt, pix, WC_DROP_FOOTPRINT, 0) : 0;
+                kw = high ? slots_needed(r, d2, alt, pix, WC_DROP(r), 0) : 0;
                 kw = kw < r->nwc ? kw : r->nwc;
                 kw = kw < k ? kw : k;
             }
@@ -1406,6 +1550,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
             set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
             set_run_lods(r, run_k, run_kw, run_key, sqrtf(run_d2_far * run_d2), alt);
+            set_slot_lods(r, run_k, run_kw, run_key, alt, pix);
             glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;

@@ -38,8 +38,10 @@ struct renderer_desc {
     int pixel_lod;                      /* 1: per-pixel texture LOD even where the device
                                          * prefers one LOD per run (gpu.c prefer_run_lod;
                                          * tests compare the two) */
-    int keep_resolved;                  /* 1: drop a pattern only at its 1x1 level, not where
-                                         * its mip means are nearly flat (tests compare) */
+    int keep_resolved;                  /* 1: drop a pattern, its slopes and its whitecaps,
+                                         * only at its 1x1 level, not where its mip means are
+                                         * nearly flat or its whitecaps little more than its
+                                         * patch's (tests compare) */
     int no_sky;                         /* 1: draw no sky, so the sea's silhouette meets the
                                          * clear colour (tests: the horizon row) */
     int detile;                         /* enum detile_mode (swell --detile); default AUTO.
