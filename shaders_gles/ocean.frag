@@ -157,8 +157,7 @@ void detile(vec2 uv, vec3 sh)
 // radiance stays and at g = 0 the slot is its patch's constants, as where it is not fetched.
 float slot_weight(vec4 l, float cmax)
 {
-    float f = clamp(V_FOOT, -30.0, 30.0);
-    return clamp(l.x * f + l.y, 0.0, 1.0) * clamp(l.w + l.z * f, 0.0, cmax);
+    return clamp(l.x * V_FOOT + l.y, 0.0, 1.0) * clamp(l.w + l.z * V_FOOT, 0.0, cmax);
 }
 
 #ifdef QUALITY_HIGH
