@@ -155,6 +155,9 @@ void detile(vec2 uv, vec3 sh)
 // T the patch's variance (the top level's, = W + the means' variance), the pixel's is
 // g v + (1 - g) W + (1 - g^2) (T - W), whose mean over the patch is T at every g. So the mean
 // radiance stays and at g = 0 the slot is its patch's constants, as where it is not fetched.
+// Where the contrast factor takes g above 1 the variance takes min(g, 1): the fetched v as it
+// is, never less (the bookkeeping's (1 - g^2) would take the patch's variance back, to below
+// zero on tables of a few waves, where the level contrasts are extreme).
 float slot_weight(vec4 l, float cmax)
 {
     return clamp(l.x * V_FOOT + l.y, 0.0, 1.0) * clamp(l.w + l.z * V_FOOT, 0.0, cmax);
@@ -173,7 +176,8 @@ void add_slope(vec4 b, vec4 sc, vec4 m, vec2 t, float g, vec4 a0, vec4 a1, vec4 
     vec2 v = w2.x * max(s0.zw - s0.xy * s0.xy, vec2(0.0)) +
              w2.y * max(s1.zw - s1.xy * s1.xy, vec2(0.0)) +
              w2.z * max(s2.zw - s2.xy * s2.xy, vec2(0.0));
-    g_var += g * v + (1.0 - g) * m.zw + (1.0 - g * g) * (t - m.zw);
+    float h = min(g, 1.0);
+    g_var += h * v + (1.0 - h) * m.zw + (1.0 - h * h) * (t - m.zw);
 }
 
 void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
@@ -187,7 +191,8 @@ void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
     g_mu += mu.x + g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
     float v = dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
                                         k2.y - k2.x * k2.x), vec3(0.0)));
-    g_kvar += g * v + (1.0 - g) * mu.y + (1.0 - g * g) * (mu.z - mu.y);
+    float h = min(g, 1.0);
+    g_kvar += h * v + (1.0 - h) * mu.y + (1.0 - h * h) * (mu.z - mu.y);
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
 #define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))

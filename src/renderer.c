@@ -98,11 +98,11 @@ static const char *const sky_uniform_names[SU_COUNT] = {
 /* The contrast gain of a run's level where it is half an octave coarser than the footprint
  * (weight_terms). */
 #define RUN_BLUR_GAIN 1.41421356f
-/* 0: off. On, it met the seam metric better at 1 km (1.65 -> 1.18) but on tables of a few
- * waves (test_render) the level contrasts are extreme: the gain drove the variance it takes
- * back negative and the sun to a needle (white noise at gles2-min); runs vs per-pixel LOD
- * RMSE 2.9 -> 4.6 at gles3. Off until the variance bookkeeping for gains above 1 is sound. */
-#define RUN_CONTRAST 0
+/* 1: a run's level scaled to the contrast of the footprint's fractional level (weight_terms);
+ * the seam metric at rough 1 km 45 deg down 1.65 -> 1.18, over test_seams' views high 2.81 ->
+ * 1.38. The variance takes min(g, 1) of the gain (ocean.frag add_slope): with (1 - g^2) it
+ * went negative on tables of a few waves (test_render), the sun a needle. */
+#define RUN_CONTRAST 1
 #define RUN_CONTRAST_MAX 2.0f
 
 /* Ocean program variants: k slots' slopes and the first kw <= k of their whitecaps fetched. */

@@ -594,6 +594,26 @@ static double rmse_row_max(const uint8_t *a, const uint8_t *b, int *row)
     return worst;
 }
 
+/* The largest difference of mean luminance between a and b over a band of 8 rows, and its
+ * first row: the mean radiance per band, where a picture's texture may differ. */
+static double band_mean_max(const uint8_t *a, const uint8_t *b, int *band)
+{
+    double worst = 0.0;
+    *band = -1;
+    for (int y0 = 0; y0 + 8 <= H; y0 += 8) {
+        double d = 0.0;
+        for (int y = y0; y < y0 + 8; y++)
+            for (int x = 0; x < W; x++)
+                d += lum(a + 4 * ((size_t)y * W + x)) - lum(b + 4 * ((size_t)y * W + x));
+        d = fabs(d) / (8.0 * W);
+        if (d > worst) {
+            worst = d;
+            *band = y0;
+        }
+    }
+    return worst;
+}
+
 static double rmse_rgb(const uint8_t *a, const uint8_t *b)
 {
     double se = 0.0;
@@ -787,8 +807,13 @@ static void test_patches_lod(void **state)
 
 /* Where the device prefers one mip level per run of rows (gpu.c prefer_run_lod: llvmpipe,
  * softpipe): those runs against per-pixel LOD on the same tier, both qualities, at the surface
- * and at 1 km: RMSE below 5 of 255 (measured 1.3-3.9: low at the surface, where Hu's pass
- * shows the slopes' glitter unfiltered, differs most; high takes the sky map per run too). On
+ * and at 1 km: RMSE below 6 of 255 (measured 1.3-3.9 before the runs' contrast matching,
+ * 1.1-5.5 with it: renderer.c weight_terms scales a run's level to the contrast of the
+ * footprint's fractional level, which per-pixel trilinear filtering lowers between levels, and
+ * low at the surface, where Hu's pass shows the slopes' glitter unfiltered, differs most; high
+ * takes the sky map per run too), and the mean luminance of every 8 rows within 5 levels
+ * (measured 0.3-4.3, low at the surface, where the Fresnel texture's lookup is not linear in
+ * the slope the contrast scales). On
  * the best tier (highp on llvmpipe) and on gles2-min (mediump); both bind per-level textures
  * (renderer.c chain_tex). */
 static void test_run_lod(void **state)
@@ -823,7 +848,12 @@ static void test_run_lod(void **state)
                               "RMSE %.2f / 255\n", gpu_tier_name(tiers[t]),
                               render_quality_name(q), c ? "1 km" : "surface", g_draws,
                               pixel_draws, rmse);
-                assert_true(rmse < 5.0);
+                int band;
+                double bm = band_mean_max(fx.img, fx.img2, &band);
+                print_message("  the largest difference of 8 rows' mean luminance: %.2f at "
+                              "row %d\n", bm, band);
+                assert_true(rmse < 6.0);
+                assert_true(bm < 5.0);
             }
 }
 
@@ -895,7 +925,10 @@ static void test_detile_auto(void **state)
  * where a lattice cell spans a pixel or two, so the pixels of a 2x2 quad read different
  * offsets and their implicit LODs disagree in the image that fetches every pattern there;
  * the runs take the patches' constants there), drawn in more than one run, at both
- * qualities. */
+ * qualities. Since the patterns fade out over an octave of footprint before the rows that
+ * stop fetching them (ocean.frag slot_weight: no seam, test_seams), the texture they still
+ * have there is gone over more rows: RMSE < 1.5 (measured 1.13 high, 1.32 low) and the mean
+ * luminance of every 8 rows within 0.6 levels (measured 0.38, 0.40). */
 static void test_fetch_runs(void **state)
 {
     struct camera c;
@@ -920,20 +953,28 @@ static void test_fetch_runs(void **state)
         print_message("%s, 1 km: %d runs (%d with whitecaps as constants) vs every pattern "
                       "everywhere: RMSE %.3f / 255, the worst row %d %.3f\n",
                       render_quality_name(q), g_draws, g_draws_wc_const, rmse, row, worst);
-        assert_true(rmse < 1.0);
+        int band;
+        double bm = band_mean_max(fx.img, fx.img2, &band);
+        print_message("  the largest difference of 8 rows' mean luminance: %.2f at row %d\n",
+                      bm, band);
+        assert_true(rmse < 1.5);
+        assert_true(bm < 0.6);
     }
 }
 
 /* A baked spectrum's pattern spans a few octaves above its patch's fundamental, so its mip
  * means are nearly flat well before the 1x1 level (renderer.c DROP_RESOLVED): runs drop it
- * there, and the image stays that of runs that keep it to its 1x1 level. Every LOD path:
- * the per-pixel LOD of GPUs, and llvmpipe's one level per run (per-level textures), each at
- * gles2-min (mediump) and gles3: RMSE < 1.5 / 255 (measured 0.35-0.95 with eq. 26 as the
- * shader had it; with eq. 26 as published, which reflects more sky at grazing and so shows a
- * slope change more, 0.47-1.33, and with 10 % for 2 %, 2.05: the drop's seam is issue 14's
- * item 1; before, 10 % gave 1.73 and 30 % 3.43). (Every pattern fetched everywhere is no reference here: at 1 km
- * the small patterns' whitecaps alias at their 2x2 levels, and in mediump their coordinates
- * grow to thousands of patches at the horizon, which fp16 resolves to whole patches.) */
+ * there, fading its texture out over the octave of footprint before (ocean.frag slot_weight)
+ * and moving the variance its means held into the pixel's, and the mean radiance stays that
+ * of runs that keep it to its 1x1 level: the mean luminance of every 8 rows within 3 levels
+ * (measured 0.43-2.49; the texture the runs that keep it still show there differs pixel by
+ * pixel: RMSE < 3.5, measured 1.03-3.01, which was 0.47-1.33 when the drop was a hard step,
+ * a seam of 2.5-7x in texture energy; test_seams holds the continuity). Every LOD path: the
+ * per-pixel LOD of GPUs, and llvmpipe's one level per run (per-level textures), each at
+ * gles2-min (mediump) and gles3. (Every pattern fetched everywhere is no reference here: at
+ * 1 km the small patterns' whitecaps alias at their 2x2 levels, and in mediump their
+ * coordinates grow to thousands of patches at the horizon, which fp16 resolves to whole
+ * patches.) */
 static void test_resolved_drop(void **state)
 {
     struct camera c;
@@ -964,8 +1005,13 @@ static void test_resolved_drop(void **state)
                           "variance) vs %d runs keeping slots to their 1x1 level: RMSE %.3f / "
                           "255\n", cases[ci].name, render_quality_name(q), g_draws,
                           g_draws_resolved_drop, draws, rmse);
+            int band;
+            double bm = band_mean_max(fx.img, fx.img2, &band);
+            print_message("  the largest difference of 8 rows' mean luminance: %.2f at row "
+                          "%d\n", bm, band);
             assert_true(g_draws_resolved_drop > 0);
-            assert_true(rmse < 1.5);
+            assert_true(rmse < 3.5);
+            assert_true(bm < 3.0);
         }
 }
 
