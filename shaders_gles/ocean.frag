@@ -8,17 +8,17 @@
 // SWELL_RUN_LOD (software rasterisers, gpu.c): the pattern tables are fetched at one whole mip
 // level per draw, the one nearest the LOD the hardware would pick at the run's rows
 // (renderer.c draw_runs), by texture2D of that level's own texture, which has no mips
-// (renderer.c chain_tex); the Fresnel texture, a smooth function of the bumped view, and in
-// low quality the sky map, at level 0 likewise. Elsewhere the per-pixel implicit LOD.
+// (renderer.c chain_tex); the Fresnel texture, a smooth function of the bumped view, at level
+// 0 likewise, and the sky map at the run's level. Elsewhere the per-pixel implicit LOD.
 //
 // Per pixel only what depends on the pixel's own slope moments is evaluated: ocean.vert
 // linearises the rest about the vertex's mean slope s0 (see there), so the pixel adds the
 // fetched deviation ds to two lookup coordinates and evaluates the Gaussians of its variance.
 // QUALITY_HIGH: Ross BRDF sun (eq. 15), filtered sky (eq. 27 by LOD bias), effective Fresnel
 // (eq. 26) on Hu's Fresnel texture, refracted light (eq. 28), whitecaps (Dupuy eq. 6).
-// Otherwise Hu's single pass: Fresnel texture, bumped sky lookup, Phong sun, mixed in display
-// space as Hu's LDR pass was: the renderer binds a tone-mapped sky map and a Fresnel texture
-// whose RGB holds the water colour and Hu's Phong term for the current sun.
+// Otherwise (low quality, Hu's single pass made the same sea, cheaper): the same slope
+// moments, Ross sun, effective Fresnel and refracted light, with the sky unfiltered at the
+// mean slope (one fetch), the whitecap coverage and the haze per vertex (no whitecap table).
 #include "common.glsl"
 
 uniform sampler2D fresnel_tex;      // Hu §5.1: A = Fresnel at the bumped view vector; an
@@ -34,19 +34,20 @@ uniform vec4 slope_mean[4];         // per slot: the mean slope over its patch (
                                     // the mean within-texel variance at the level fetched, xy
 uniform vec4 slot_lod[4];           // per slot: its weight's terms (slot_weight)
 uniform vec2 lod_cmax[4];           // per slot: the largest contrast factor, slopes, whitecaps
-#ifdef QUALITY_HIGH
 uniform vec2 slope_var[4];          // per slot: the slope variance over its patch, xy
+uniform float sky_map_scale;
+uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
+uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
+uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
+varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
+#ifdef QUALITY_HIGH
 uniform vec3 wc_mean[4];            // per slot: the foam memory's mean over its patch, its
                                     // within-texel variance at the level, over the patch
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
-uniform float sky_map_scale;
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
 uniform float sky_top_level;        // the sky map's last mip level
 uniform float sky_bias_max;         // the device's largest LOD bias (gpu.c)
-uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
-uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
-uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
 uniform float whitecap_epsilon;     // Dupuy eq. 3 threshold on j
 uniform vec4 wc_scale[4];
 uniform vec4 wc_bias[4];
@@ -54,16 +55,16 @@ uniform vec3 haze_ray;              // sky.h sky_haze's horizon terms (x exposur
 uniform vec3 haze_mie;              // takes them in ocean.vert instead
 uniform vec3 haze_sun;              // the sun's direction xy; Henyey-Greenstein g
 uniform vec3 haze_tau_ratio;        // each channel's optical depth over green's
-varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here
 varying vec4 v_extra;               // with no whitecap fetched the coverage (ocean.vert), else
                                     // 0; sky LOD offset; the haze's transmittance (ocean.vert
                                     // haze_t); the footprint (ocean.vert lod_foot)
 #define V_FOOT v_extra.w
 #else
-varying vec4 v_fog;                 // ocean.vert haze(): in-scattered light (display), its T
-varying float v_foot;
-#define V_FOOT v_foot
+varying vec4 v_fog;                 // ocean.vert haze(): in-scattered light, its T
+varying vec4 v_base;                // slope variance xy not fetched here, whitecap coverage
+                                    // (ocean.vert), the footprint (ocean.vert lod_foot)
+#define V_FOOT v_base.w
 #endif
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
 varying vec4 v_lin_dx;              // ...and their derivatives in s.x
@@ -163,7 +164,6 @@ float slot_weight(vec4 l, float cmax)
     return clamp(l.x * V_FOOT + l.y, 0.0, 1.0) * clamp(l.w + l.z * V_FOOT, 0.0, cmax);
 }
 
-#ifdef QUALITY_HIGH
 // The blend of three taps of a moment table (detile.h): means by w_j about the patch's mean m
 // (m + sum_j w_j (s_j - m)), variances by w_j^2; both weighted by g (slot_weight) about the
 // level's mean within-texel variance m.zw, with t the patch's variance.
@@ -179,6 +179,9 @@ void add_slope(vec4 b, vec4 sc, vec4 m, vec2 t, float g, vec4 a0, vec4 a1, vec4 
     float h = min(g, 1.0);
     g_var += h * v + (1.0 - h) * m.zw + (1.0 - h * h) * (t - m.zw);
 }
+#define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))
+
+#ifdef QUALITY_HIGH
 
 void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
 {
@@ -195,15 +198,7 @@ void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
     g_kvar += h * v + (1.0 - h) * mu.y + (1.0 - h * h) * (mu.z - mu.y);
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
-#define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))
 #define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))
-#else
-// The single pass needs the mean slope only: m + g (sum_j w_j s_j - (sum_j w_j) m).
-#ifdef SWELL_NO_DETILE
-#define SLOPE(i, tex, uv) g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (slope_bias[i].xy - slope_mean[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy)
-#else
-#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i].xy) + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy))
-#endif
 #endif
 
 void main()
@@ -242,7 +237,6 @@ void main()
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.
     vec4 uv = v_lin + v_lin_dx * g_ds.x + v_lin_dy * g_ds.y;
     vec4 ftex = texture2D(fresnel_tex, uv.xy);
-#ifdef QUALITY_HIGH
     // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below; 1e-4 is
     // also the smallest value whose products stay normal in fp16.
     vec2 var = max(v_base.xy + g_var, vec2(1e-4));
@@ -260,6 +254,7 @@ void main()
     // capped where the tone map is white anyway: no fp16 infinity reaches the mix below
     vec3 sun = min(sun_irr * min(p * v_sun.z, 3.0e4), vec3(1.0e4));
 
+#ifdef QUALITY_HIGH
     // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
     // log2 of it is log2(sigma) + the vertex's log2(2 size du/dzeta).
 #ifndef SWELL_RUN_LOD
@@ -303,9 +298,16 @@ void main()
     vec3 sky = texture2D(sky_tex, uv.zw, bias).rgb * sky_map_scale;
 #endif
 
+#else
+    // Low quality: the sky at the pixel's mean slope (no eq. 27 filter), at the run's level
+    // with SWELL_RUN_LOD, elsewhere the implicit LOD.
+    vec3 sky = texture2D(sky_tex, uv.zw).rgb * sky_map_scale;
+#endif
+
     // Refracted light, eq. 28.
     vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_radiance;
 
+#ifdef QUALITY_HIGH
     // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments of the foam memory (summed
     // with the slopes above).
 #if FS_WHITECAPS > 0
@@ -324,10 +326,9 @@ void main()
     vec3 t = exp2(haze_tau_ratio * log2(max(v_extra.z, 1e-4)));
     gl_FragColor = vec4(tone_map(mix(haze, mix(clear_sea, foam_radiance, cover), t)), 1.0);
 #else
-    // Hu 2006 eq. 3: F from the Fresnel texture, the sky reflected about the bumped normal; the
-    // texture's RGB holds the rest per texel of the bumped view vector for this sun: (1 - F) x
-    // the water colour + the Phong sun of Hu §5.3 (renderer.c upload_fresnel_sun).
-    vec3 sky = texture2D(sky_tex, uv.zw).rgb;
-    gl_FragColor = vec4((ftex.rgb + ftex.a * sky) * v_fog.a + v_fog.rgb, 1.0);
+    // Low quality: eq. 6's coverage and the haze per vertex (its in-scattered light and
+    // green's transmittance).
+    vec3 lit = mix(clear_sea, foam_radiance, v_base.z);
+    gl_FragColor = vec4(tone_map(lit * v_fog.a + v_fog.rgb), 1.0);
 #endif
 }

@@ -9,7 +9,7 @@
 // ray) at the vertex's mean slope s0 and their central differences over +-h (h: the fetched
 // patterns' slope deviation), and the fragment stage only adds d(uv)/ds ds: two multiply-adds
 // instead of two normalisations, a reflection and a stereographic division per pixel in
-// mediump. High quality also moves the slowly varying factors of the Ross BRDF here.
+// mediump. The slowly varying factors of the Ross BRDF are evaluated here too.
 #include "common.glsl"
 
 #ifdef VTF_PATTERNS
@@ -124,28 +124,28 @@ uniform vec3 haze_ray;      // the horizon's Rayleigh and Mie radiances before t
 uniform vec3 haze_mie;      // functions (x exposure)
 #endif
 #ifndef QUALITY_HIGH
-varying vec4 v_fog;         // in-scattered light (display space), the sea's transmittance
+varying vec4 v_fog;         // in-scattered light, the sea's transmittance
 #endif
 varying vec4 v_lin;         // Fresnel-texture uv, sky-map uv at s0
 varying vec4 v_lin_dx;      // their derivatives in s.x ...
 varying vec4 v_lin_dy;      // ... and s.y
-#ifdef QUALITY_HIGH
-uniform float sky_map_size;             // texels
 uniform vec4 const_slope;               // slots not fetched: -, -, slope variance xy
 uniform vec2 const_k;                   // ...their foam memory mean and variance
 uniform vec2 unresolved_var;            // slope variance below every table (Bruneton eq. 4)
 uniform vec2 total_var;                 // every pattern's slope variance + unresolved_var
-#if FS_WHITECAPS == 0
+#if FS_WHITECAPS == 0 || !defined(QUALITY_HIGH)
 uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's, own name: a
                                         // uniform in both stages needs one precision)
 #endif
-varying vec4 v_sun;
-varying vec4 v_base;
+varying vec4 v_sun;         // zeta_h - s0, the Ross factor, eq. 25's x weight
+#ifdef QUALITY_HIGH
+uniform float sky_map_size;             // texels
+varying vec4 v_base;        // slope variance xy, foam memory mean and variance not fetched
 varying vec4 v_extra;       // coverage (no whitecap fetched), sky LOD offset, the haze's
                             // transmittance, lod_foot (so high quality's varyings fit GLES2's
                             // 8 rows)
 #else
-varying float v_foot;       // lod_foot
+varying vec4 v_base;        // slope variance xy not fetched, coverage, lod_foot
 #endif
 #if FS_PATTERNS > 0
 varying vec2 v_uv0;
@@ -201,8 +201,9 @@ vec4 haze(vec3 p)
     vec3 t = haze_trans(p);
     float cg = dot(p.xy / max(length(p.xy), 1e-6), sun_dir_world.xy);
     vec3 sky_h = horizon_sky(cg, haze_frame.y, haze_ray, haze_mie);
-    // low quality mixes in display space (ocean.frag): the tone-mapped horizon
-    return vec4(tone_map(sky_h) * (1.0 - t.g), t.g);
+    // low quality: green's transmittance for every channel (ocean.frag mixes before the tone
+    // map, as high quality does with each channel's)
+    return vec4(sky_h * (1.0 - t.g), t.g);
 }
 #endif
 
@@ -215,7 +216,6 @@ float lod_foot(vec2 p)
     return log2(dot(p, p) + lod_frame.x) + lod_frame.y;
 }
 
-#ifdef QUALITY_HIGH
 // Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
 // Lambda(a) = (e^{-a^2} / (a sqrt(pi)) - erfc(a)) / 2, a = 1 / (sqrt(2) sigma tan theta), by the
 // rational fit of Walter et al. 2007 (eq. 27, the same Gaussian/Beckmann Lambda; relative error
@@ -228,7 +228,6 @@ float ross_lambda(float cos_t, float var)
         return 0.0;
     return (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
 }
-#endif
 
 void main()
 {
@@ -264,7 +263,6 @@ void main()
     v_lin = lookups(v, s0);
     v_lin_dx = (lookups(v, s0 + vec2(h, 0.0)) - lookups(v, s0 - vec2(h, 0.0))) / (2.0 * h);
     v_lin_dy = (lookups(v, s0 + vec2(0.0, h)) - lookups(v, s0 - vec2(0.0, h))) / (2.0 * h);
-#ifdef QUALITY_HIGH
     // Ross BRDF (Bruneton eq. 15) = p(zeta_h) F(v.h) / (4 cos_v cos^4 theta_h (1 + L(v) + L(l))):
     // the slope density p is the pixel's (ocean.frag); the rest varies slowly and is evaluated
     // here at the vertex's mean normal, the shadowing with the sea's whole slope variance.
@@ -283,7 +281,10 @@ void main()
     float shadow = 1.0 + ross_lambda(cos_v, var_v) + ross_lambda(cos_l, var_v);
     float ross = cos_l > 0.0 ? fs / (8.0 * PI * hn * hn * hn * hn * cos_v * shadow) : 0.0;
     v_sun = vec4(-hv.xy / max(hv.z, 0.05) - s0, ross, wx);
-    v_base = vec4(a_geo_slope.zw + const_slope.zw + unresolved_var, a_geo_k.xy + const_k.xy);
+    vec2 var_base = a_geo_slope.zw + const_slope.zw + unresolved_var;
+    vec2 k_base = a_geo_k.xy + const_k.xy;
+#ifdef QUALITY_HIGH
+    v_base = vec4(var_base, k_base);
     // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
     vec3 r = reflect(-v, n);
     v_extra = vec4(0.0, log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))),
@@ -294,6 +295,11 @@ void main()
     // is resolved per vertex, as the moments are then the same at every vertex).
     v_extra.x = whitecap_cover(whitecap_epsilon_v, v_base.z, v_base.w);
 #endif
+#else
+    // Low quality fetches no whitecap table: eq. 6's coverage from the vertex's moments, as
+    // high quality's runs without whitecap fetches take it.
+    v_base = vec4(var_base, whitecap_cover(whitecap_epsilon_v, k_base.x, k_base.y),
+                  lod_foot(a_rest));
 #endif
 #if FS_PATTERNS > 0
     v_uv0 = pattern_uv_offset[0] + a_rest * pattern_inv_size[0];
@@ -309,7 +315,6 @@ void main()
 #endif
 #ifndef QUALITY_HIGH
     v_fog = haze(a_pos);
-    v_foot = lod_foot(a_rest);
 #endif
     gl_Position = world_to_clip * vec4(a_pos, 1.0);
 }

@@ -188,13 +188,12 @@ struct renderer {
     double camera_raise_m;      /* how far the last frame raised the camera (renderer_frame) */
     GLuint fresnel_tex, vbo, ibo, quad_vbo;
     struct chain_tex sky_tex;
-    struct chain_tex sky_display_tex; /* the sky map tone-mapped: low quality's reflections */
+    struct chain_tex sky_display_tex; /* the sky map tone-mapped: the background's */
     GLuint sky_view_tex;              /* background: gains by elevation from the camera */
     float sky_view_scale[2][3];       /* texel / 255 x scale = gain x exposure, ray and mie */
     float sky_view_sun[3];            /* the sun's transmittance from the camera */
     double sky_view_alt;              /* altitude the table is for; NAN: to be built */
     int sky_half;                     /* sky_tex holds half-float radiances (scale 1) */
-    GLuint fresnel_sun_tex;           /* low: A Fresnel, RGB (1 - F) water + Hu's Phong sun */
     const struct swell_table *fresnel;
     uint8_t *scratch;                 /* derived textures are built here */
     struct swell_table fresnel_own;   /* built here only when the tables lack one */
@@ -319,7 +318,6 @@ void renderer_destroy(struct renderer *r)
     gpu_buffer_destroy(r->gpu, &r->quad_vbo);
     gpu_buffer_destroy(r->gpu, &r->ibo);
     gpu_buffer_destroy(r->gpu, &r->vbo);
-    gpu_texture_destroy(r->gpu, &r->fresnel_sun_tex);
     gpu_texture_destroy(r->gpu, &r->sky_view_tex);
     chain_destroy(r, &r->sky_display_tex);
     chain_destroy(r, &r->sky_tex);
@@ -540,8 +538,8 @@ static uint8_t unorm8(float x)
     return (uint8_t)lrintf(255.0f * fminf(fmaxf(x, 0.0f), 1.0f));
 }
 
-/* The sky map in display space, every level (the background pass and the single pass mix
- * there, as Hu's LDR pass did): texel -> tone_map(exposure x radiance). */
+/* The sky map in display space, every level (the background pass): texel ->
+ * tone_map(exposure x radiance). */
 static int upload_sky_display(struct renderer *r, struct swell_err *err)
 {
     size_t n = sky_level_offset(&r->sky, r->sky.levels);
@@ -550,13 +548,6 @@ static int upload_sky_display(struct renderer *r, struct swell_err *err)
         r->scratch[i] = (i & 3) == 3 ? 255 : unorm8(tone_map_1(k * (float)r->sky.data[i]));
     return upload_chain(&r->sky_display_tex, r->sky.size, r->sky.size, r->sky.levels, r->scratch,
                         "renderer: display sky upload", err);
-}
-
-/* The sun's largest channel of irradiance at the sea; sun_irr / sun_peak is its colour. */
-static float sun_peak(const struct renderer *r)
-{
-    float m = fmaxf(r->sky.sun_irr[0], fmaxf(r->sky.sun_irr[1], r->sky.sun_irr[2]));
-    return m > 1e-6f ? m : 1e-6f;
 }
 
 /* The light the sea reflects and refracts, radiances times the exposure (tone_map in
@@ -621,36 +612,6 @@ static int upload_atlas(const struct renderer *r, GLuint tex, uint8_t *atlas,
 {
     atlas_finish(r, atlas);
     return upload_single(tex, r->atlas_w, r->atlas_h, atlas, "renderer: Fresnel upload", err);
-}
-
-static int upload_fresnel_sun(struct renderer *r, struct swell_err *err)
-{
-    const struct swell_table *fr = r->fresnel;
-    const float *l = r->sky.sun_dir;
-    size_t texels = (size_t)fr->width * fr->height;
-    float sun[3], sea[3], foam[3], sea_d[3], sun_d[3], peak = sun_peak(r);
-    sea_light(r, sun, sea, foam);
-    for (int c = 0; c < 3; c++) {
-        sea_d[c] = tone_map_1(sea[c]);
-        sun_d[c] = r->sky.sun_irr[c] / peak;
-    }
-    /* the highlight's radiance, 60 x the sun's irradiance at its peak (x exposure), tone-mapped
-     * then scaled by the sun's colour */
-    float glint = 60.0f * r->exposure * peak;
-    for (size_t i = 0; i < texels; i++) {
-        const uint8_t *px = fr->data + 4 * i;
-        double vb[3], d;
-        for (int c = 0; c < 3; c++)
-            vb[c] = fr->bias[c] + fr->scale[c] * px[c] / 255.0;
-        d = fmax(-vb[0] * l[0] - vb[1] * l[1] + vb[2] * l[2], 0.0);
-        float phong = tone_map_1(glint * (float)pow(d, 512.0)), f = (float)px[3] / 255.0f;
-        uint8_t *o = r->scratch + 4 * ((i / (size_t)fr->width) * (size_t)r->atlas_w +
-                                       i % (size_t)fr->width);
-        for (int c = 0; c < 3; c++)
-            o[c] = unorm8((1.0f - f) * sea_d[c] + phong * sun_d[c]);
-        o[3] = px[3];
-    }
-    return upload_atlas(r, r->fresnel_sun_tex, r->scratch, err);
 }
 
 static int create_disp_textures(struct renderer *r, struct swell_err *err)
@@ -728,8 +689,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
     /* the atlas's hash on the unit after the displacement's (choose_vtf counts it) */
     if (renderer_detile(r))
         bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
-                 r->d.quality == QUALITY_HIGH ? r->fresnel_tex : r->fresnel_sun_tex,
-                 u[VU_DETILE_TEX]);
+                 r->fresnel_tex, u[VU_DETILE_TEX]);
     float atlas[4];
     atlas_hash_frame(r, atlas);
     glUniform4fv(u[VU_DETILE_ATLAS], 1, atlas);
@@ -768,15 +728,13 @@ static int create_textures(struct renderer *r, struct swell_err *err)
         scratch = 4 * (size_t)r->atlas_w * r->atlas_h;
     if (!(r->scratch = malloc(scratch)))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for derived textures");
-    if (r->d.quality == QUALITY_HIGH) {
-        for (int y = 0; y < fr->height; y++)
-            memcpy(r->scratch + 4 * (size_t)r->atlas_w * y, fr->data + 4 * (size_t)fr->width * y,
-                   4 * (size_t)fr->width);
-        if ((rc = gpu_texture_create(r->gpu, r->atlas_w, r->atlas_h, 1, FORMAT_RGBA8, 0,
-                                     "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
-            (rc = upload_atlas(r, r->fresnel_tex, r->scratch, err)))
-            return rc;
-    }
+    for (int y = 0; y < fr->height; y++)
+        memcpy(r->scratch + 4 * (size_t)r->atlas_w * y, fr->data + 4 * (size_t)fr->width * y,
+               4 * (size_t)fr->width);
+    if ((rc = gpu_texture_create(r->gpu, r->atlas_w, r->atlas_h, 1, FORMAT_RGBA8, 0,
+                                 "renderer: Fresnel texture", &r->fresnel_tex, err)) ||
+        (rc = upload_atlas(r, r->fresnel_tex, r->scratch, err)))
+        return rc;
     update_sky_constants(r);
     if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
                            "renderer: display sky map", &r->sky_display_tex, err)) ||
@@ -784,19 +742,12 @@ static int create_textures(struct renderer *r, struct swell_err *err)
         (rc = gpu_texture_create(r->gpu, SKY_VIEW_N, 2, 1, FORMAT_RGBA8, 0,
                                  "renderer: background sky table", &r->sky_view_tex, err)))
         return rc;
-    if (r->d.quality == QUALITY_HIGH) {
-        r->sky_half = r->gpu->caps.half_float;
-        if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels,
-                               r->sky_half ? FORMAT_RGBA16F : FORMAT_RGBA8, 0,
-                               "renderer: sky map", &r->sky_tex, err)) ||
-            (rc = upload_sky(r, &r->sky, err)))
-            return rc;
-    } else if ((rc = gpu_texture_create(r->gpu, r->atlas_w, r->atlas_h, 1, FORMAT_RGBA8, 0,
-                                        "renderer: Fresnel-sun texture", &r->fresnel_sun_tex,
-                                        err)) ||
-               (rc = upload_fresnel_sun(r, err))) {
+    r->sky_half = r->gpu->caps.half_float;
+    if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels,
+                           r->sky_half ? FORMAT_RGBA16F : FORMAT_RGBA8, 0, "renderer: sky map",
+                           &r->sky_tex, err)) ||
+        (rc = upload_sky(r, &r->sky, err)))
         return rc;
-    }
     if (r->vtf && (rc = create_disp_textures(r, err)))
         return rc;
     for (int s = 0; s < r->nfs; s++) {
@@ -1041,10 +992,7 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     r->d.sun_elev_deg = elev_deg;
     r->d.sun_azim_deg = azim_deg;
     update_sky_constants(r);
-    if ((rc = upload_sky_display(r, err)) ||
-        (r->fresnel_sun_tex && (rc = upload_fresnel_sun(r, err))))
-        return rc;
-    return 0;
+    return upload_sky_display(r, err);
 }
 
 /* Dequantised first texel of the top (1x1) level of a blended chain or, for a table that is
@@ -1286,10 +1234,6 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform3fv(u[OU_LIN_S0], 1, lin);
     glUniform2fv(u[OU_DS_OFFSET], 1, dso);
     glUniform2fv(u[OU_TOTAL_VAR], 1, tot);
-    if (r->d.quality != QUALITY_HIGH) {
-        bind_tex(UNIT_FRESNEL, r->fresnel_sun_tex, u[OU_FRESNEL_TEX]);
-        bind_tex(UNIT_SKY, chain_at(&r->sky_display_tex, 0), u[OU_SKY_TEX]);
-    }
 }
 
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
@@ -1385,8 +1329,7 @@ static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float 
         if (s < kw)
             bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&r->slot[s].wc_tex, wl[s]), -1);
     }
-    if (r->d.quality == QUALITY_HIGH)
-        bind_tex(UNIT_SKY, chain_at(&r->sky_tex, sky), -1);
+    bind_tex(UNIT_SKY, chain_at(&r->sky_tex, sky), -1);
 }
 
 /* log2 of the footprint (m, at a row's nearest vertex) from which slots_needed no longer
@@ -1693,8 +1636,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",
         r->sky_half ? "half-float radiances (RGBA16F), tone-mapped RGBA8 copy for the background"
-        : r->d.quality == QUALITY_HIGH ? "RGBA8 with a scale, tone-mapped RGBA8 copy for the background"
-                                       : "tone-mapped RGBA8 (display space)",
+        : "RGBA8 with a scale, tone-mapped RGBA8 copy for the background",
         r->d.quality == QUALITY_HIGH
             ? r->run_lod
               ? "high: Ross BRDF sun (eq. 15), sky map filtered at one level per run of rows "
@@ -1707,7 +1649,9 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
               : "high: Ross BRDF sun (eq. 15), sky map filtered by an LOD bias beyond the pixel's "
                 "own LOD, read from the map's alpha (eq. 27), effective Fresnel "
               "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"
-            : "low: Hu 2006 single pass (Fresnel texture, bumped sky, Phong sun)");
+            : "low: one pass with the same slope moments, Ross BRDF sun (eq. 15), effective "
+              "Fresnel (eq. 26) and refraction (eq. 28); the sky unfiltered at the mean slope, "
+              "whitecaps (Dupuy eq. 6) and haze per vertex");
     if (n > 0 && (size_t)n < size && r->d.quality == QUALITY_HIGH && !r->run_lod &&
         !shader_has_gradients(&r->gpu->caps))
         snprintf(buf + n, size - (size_t)n, "sky LOD bias: at most %g (the device's limit)\n",

@@ -811,9 +811,10 @@ static void test_patches_lod(void **state)
  * 1.1-5.5 with it: renderer.c weight_terms scales a run's level to the contrast of the
  * footprint's fractional level, which per-pixel trilinear filtering lowers between levels, and
  * low at the surface, where Hu's pass shows the slopes' glitter unfiltered, differs most; high
- * takes the sky map per run too), and the mean luminance of every 8 rows within 5 levels
- * (measured 0.3-4.3, low at the surface, where the Fresnel texture's lookup is not linear in
- * the slope the contrast scales). On
+ * takes the sky map per run too), and the mean luminance of every 8 rows within 8 levels
+ * (measured 0.3-3.0 in high; low 6.8 at the surface near the horizon: both qualities bind the
+ * sky map per run at eq. 27's level for the run's variance, but low quality's per-pixel path
+ * reads it at the implicit LOD, unfiltered, where high's adds eq. 27's bias). On
  * the best tier (highp on llvmpipe) and on gles2-min (mediump); both bind per-level textures
  * (renderer.c chain_tex). */
 static void test_run_lod(void **state)
@@ -853,7 +854,7 @@ static void test_run_lod(void **state)
                 print_message("  the largest difference of 8 rows' mean luminance: %.2f at "
                               "row %d\n", bm, band);
                 assert_true(rmse < 6.0);
-                assert_true(bm < 5.0);
+                assert_true(bm < 8.0);
             }
 }
 
@@ -1015,6 +1016,61 @@ static void test_resolved_drop(void **state)
         }
 }
 
+/* Low quality is the same sea as high, cheaper (issue 14 item 4): the same slope moments, Ross
+ * sun and effective Fresnel, without the whitecap tables, eq. 27's sky filter and the haze per
+ * pixel. On baked seas of 8 and 15 m/s wind, gles2-min, the lattice off in both (so both read
+ * the same texels), from the surface, 1 km and 10 km: every 8 rows' mean luminance within 5 %
+ * of high's (measured 1.0-2.0 %; Hu's single pass of before: 25-47 % darker at 1 km, the
+ * distant glitter gone), except at the surface in a breaking sea: low takes eq. 6's coverage
+ * from the patches' moments per vertex, which falls short of the foam high resolves from its
+ * whitecap tables near the camera (the foam memory is not Gaussian): held at 30 % there,
+ * measured 24 %, the foam gap issue 14 item 6 has to close. */
+static void test_quality_match(void **state)
+{
+    struct camera cams[3];
+    static const char *const names[3] = { "surface", "1 km", "10 km" };
+    static const float winds[2] = { 8.0f, 15.0f };
+    (void)state;
+    surface_camera(&cams[0]);
+    camera_defaults(&cams[1]);
+    cams[1].pos[2] = 1000.0;
+    cams[1].pitch_deg = -12.0f;
+    camera_defaults(&cams[2]);
+    cams[2].pos[2] = 10000.0;
+    cams[2].pitch_deg = -25.0f;
+    g_no_detile = 1;
+    for (int w = 0; w < 2; w++) {
+        use_baked(SWELL_BUDGET_DEFAULT, winds[w]);
+        for (int c = 0; c < 3; c++) {
+            render(TIER_GLES2_MIN, QUALITY_LOW, GEOMETRY_GRID, 30.0f, 100.0f, &cams[c], 2.0,
+                   fx.img, NULL);
+            render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 30.0f, 100.0f, &cams[c], 2.0,
+                   fx.img2, NULL);
+            double worst = 0.0;
+            int at = -1;
+            for (int y0 = 0; y0 + 8 <= H; y0 += 8) {
+                double a = 0.0, b = 0.0;
+                for (int y = y0; y < y0 + 8; y++)
+                    for (int x = 0; x < W; x++) {
+                        a += lum(fx.img + 4 * ((size_t)y * W + x));
+                        b += lum(fx.img2 + 4 * ((size_t)y * W + x));
+                    }
+                double d = fabs(a / fmax(b, 1.0) - 1.0);
+                if (d > worst) {
+                    worst = d;
+                    at = y0;
+                }
+            }
+            double bound = w == 1 && c == 0 ? 0.30 : 0.05;
+            print_message("low vs high, %.0f m/s, %s: 8-row mean luminance within %.1f %% "
+                          "(worst rows %d-%d; held %.0f %%)\n", (double)winds[w], names[c],
+                          100.0 * worst, at, at + 7, 100.0 * bound);
+            assert_true(worst < bound);
+        }
+    }
+    g_no_detile = 0;
+}
+
 int main(void)
 {
     struct platform_desc pd = { 0 };
@@ -1038,6 +1094,7 @@ int main(void)
     fx.img3 = malloc((size_t)W * H * 4);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_teardown(test_defined_pixels, reset_fixture),
+        cmocka_unit_test_teardown(test_quality_match, reset_fixture),
         cmocka_unit_test_teardown(test_baked_tables, reset_fixture),
         cmocka_unit_test_teardown(test_horizon, reset_fixture),
         cmocka_unit_test_teardown(test_horizon_sphere, reset_fixture),
