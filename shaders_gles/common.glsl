@@ -53,11 +53,28 @@ void detile_offsets(vec3 t, out vec3 ox, out vec3 oy)
 // (f - R0) / (1 - R0), raised to exp(-2.69 sig) as the equation has it (fresnel.c
 // fresnel_effective_tex; test_glsl compares the two on the GPU). R0 = fresnel_exact(1, 1.333).
 #define FRESNEL_R0 0.020373
-float fresnel_eff(float f, float sig)
+// ...split into the terms of sig alone, fresnel_eff_e(sig) = exp(-2.69 sig) and
+// fresnel_eff_k(sig) = (1 - R0) / (1 + 22.7 sig^1.5), which low quality evaluates per vertex,
+// and the pixel's part.
+float fresnel_eff_e(float sig)
+{
+    return exp(-2.69 * sig);
+}
+
+float fresnel_eff_k(float sig)
+{
+    return (1.0 - FRESNEL_R0) / (1.0 + 22.7 * sig * sqrt(sig));
+}
+
+float fresnel_eff_terms(float f, float e, float k)
 {
     float s = max((f - FRESNEL_R0) * (1.0 / (1.0 - FRESNEL_R0)), 1e-4);
-    return FRESNEL_R0 + (1.0 - FRESNEL_R0) * exp2(exp(-2.69 * sig) * log2(s)) /
-                        (1.0 + 22.7 * sig * sqrt(sig));
+    return FRESNEL_R0 + k * exp2(e * log2(s));
+}
+
+float fresnel_eff(float f, float sig)
+{
+    return fresnel_eff_terms(f, fresnel_eff_e(sig), fresnel_eff_k(sig));
 }
 
 // Stereographic sky-map coordinates of a direction (Bruneton 2010 §5.2): zenith at the centre,

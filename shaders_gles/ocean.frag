@@ -34,13 +34,13 @@ uniform vec4 slope_mean[4];         // per slot: the mean slope over its patch (
                                     // the mean within-texel variance at the level fetched, xy
 uniform vec4 slot_lod[4];           // per slot: its weight's terms (slot_weight)
 uniform vec2 lod_cmax[4];           // per slot: the largest contrast factor, slopes, whitecaps
-uniform vec2 slope_var[4];          // per slot: the slope variance over its patch, xy
 uniform float sky_map_scale;
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
-uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
-varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 #ifdef QUALITY_HIGH
+varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
+uniform vec2 slope_var[4];          // per slot: the slope variance over its patch, xy
+uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
 uniform vec3 wc_mean[4];            // per slot: the foam memory's mean over its patch, its
                                     // within-texel variance at the level, over the patch
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
@@ -61,9 +61,12 @@ varying vec4 v_extra;               // with no whitecap fetched the coverage (oc
                                     // haze_t); the footprint (ocean.vert lod_foot)
 #define V_FOOT v_extra.w
 #else
-varying vec4 v_fog;                 // ocean.vert haze(): in-scattered light, its T
-varying vec4 v_base;                // slope variance xy not fetched here, whitecap coverage
-                                    // (ocean.vert), the footprint (ocean.vert lod_foot)
+varying vec4 v_sun;                 // zeta_h - s0, the Ross factor over 2 pi sigma_x sigma_y,
+                                    // eq. 26's exponent (ocean.vert: the variance per vertex)
+varying vec4 v_fog;                 // the haze's in-scattered light and foam, the clear sea's
+                                    // factor (ocean.vert)
+varying vec4 v_base;                // 0.5 / the slope variance xy, eq. 26's k, the footprint
+                                    // (ocean.vert lod_foot)
 #define V_FOOT v_base.w
 #endif
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
@@ -164,6 +167,7 @@ float slot_weight(vec4 l, float cmax)
     return clamp(l.x * V_FOOT + l.y, 0.0, 1.0) * clamp(l.w + l.z * V_FOOT, 0.0, cmax);
 }
 
+#ifdef QUALITY_HIGH
 // The blend of three taps of a moment table (detile.h): means by w_j about the patch's mean m
 // (m + sum_j w_j (s_j - m)), variances by w_j^2; both weighted by g (slot_weight) about the
 // level's mean within-texel variance m.zw, with t the patch's variance.
@@ -181,7 +185,6 @@ void add_slope(vec4 b, vec4 sc, vec4 m, vec2 t, float g, vec4 a0, vec4 a1, vec4 
 }
 #define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))
 
-#ifdef QUALITY_HIGH
 
 void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
 {
@@ -199,6 +202,14 @@ void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
 #define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))
+#else
+// Low quality takes the variance per vertex (ocean.vert fetched_var): the mean slope only,
+// m + g (sum_j w_j s_j - (sum_j w_j) m).
+#ifdef SWELL_NO_DETILE
+#define SLOPE(i, tex, uv) g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (slope_bias[i].xy - slope_mean[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy)
+#else
+#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i].xy) + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy))
+#endif
 #endif
 
 void main()
@@ -237,6 +248,8 @@ void main()
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.
     vec4 uv = v_lin + v_lin_dx * g_ds.x + v_lin_dy * g_ds.y;
     vec4 ftex = texture2D(fresnel_tex, uv.xy);
+    vec2 d = v_sun.xy - g_ds;
+#ifdef QUALITY_HIGH
     // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below; 1e-4 is
     // also the smallest value whose products stay normal in fp16.
     vec2 var = max(v_base.xy + g_var, vec2(1e-4));
@@ -249,10 +262,16 @@ void main()
 
     // Sun: Ross BRDF, eq. 15: the Gaussian slope density at the half vector's slope zeta_h,
     // centred on the pixel's mean slope, times the vertex's Fresnel / shadowing factor.
-    vec2 d = v_sun.xy - g_ds;
-    float p = exp(-0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) * inversesqrt(var.x * var.y);
+    float p = exp(-0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) * inversesqrt(var.x * var.y) *
+              v_sun.z;
+#else
+    // The same with the variance per vertex (ocean.vert): eq. 26 of the vertex's sigma and
+    // the Gaussian of eq. 15 with its inverse variances and normalisation.
+    float f_eff = fresnel_eff_terms(ftex.a, v_sun.w, v_base.z);
+    float p = exp(-(d.x * d.x * v_base.x + d.y * d.y * v_base.y)) * v_sun.z;
+#endif
     // capped where the tone map is white anyway: no fp16 infinity reaches the mix below
-    vec3 sun = min(sun_irr * min(p * v_sun.z, 3.0e4), vec3(1.0e4));
+    vec3 sun = min(sun_irr * min(p, 3.0e4), vec3(1.0e4));
 
 #ifdef QUALITY_HIGH
     // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
@@ -326,9 +345,8 @@ void main()
     vec3 t = exp2(haze_tau_ratio * log2(max(v_extra.z, 1e-4)));
     gl_FragColor = vec4(tone_map(mix(haze, mix(clear_sea, foam_radiance, cover), t)), 1.0);
 #else
-    // Low quality: eq. 6's coverage and the haze per vertex (its in-scattered light and
-    // green's transmittance).
-    vec3 lit = mix(clear_sea, foam_radiance, v_base.z);
-    gl_FragColor = vec4(tone_map(lit * v_fog.a + v_fog.rgb), 1.0);
+    // Low quality: eq. 6's coverage and the haze per vertex (ocean.vert: foam and in-scattered
+    // light, the clear sea's share).
+    gl_FragColor = vec4(tone_map(clear_sea * v_fog.a + v_fog.rgb), 1.0);
 #endif
 }

@@ -145,7 +145,13 @@ varying vec4 v_extra;       // coverage (no whitecap fetched), sky LOD offset, t
                             // transmittance, lod_foot (so high quality's varyings fit GLES2's
                             // 8 rows)
 #else
-varying vec4 v_base;        // slope variance xy not fetched, coverage, lod_foot
+uniform vec4 slot_lod_v[4];             // per fetched slot: its weight's terms, the slope's
+uniform vec2 lod_cmax_v[4];             // largest contrast factor (ocean.frag slot_weight)
+uniform vec4 slope_wt_v[4];             // ...its patch's slope variance T, xy; its level at
+                                        // footprint f: a f + b (a, b)
+uniform vec4 slot_wfrac_v[16];          // per mip level: each slot's W / T
+uniform vec3 foam_radiance;             // Lambertian 0.4 foam lit by sun and sky (x exposure)
+varying vec4 v_base;        // 0.5 / the slope variance, xy; eq. 26's k; lod_foot
 #endif
 #if FS_PATTERNS > 0
 varying vec2 v_uv0;
@@ -216,6 +222,29 @@ float lod_foot(vec2 p)
     return log2(dot(p, p) + lod_frame.x) + lod_frame.y;
 }
 
+#ifndef QUALITY_HIGH
+// Low quality takes the pixel's slope variance per vertex: each fetched slot's, with h its
+// weight (ocean.frag slot_weight, at the vertex's footprint f) up to 1, as high quality's
+// g v + (1 - g) W + (1 - g^2) (T - W) (ocean.frag add_slope) with the fetched within-texel
+// variance v at its mean W over the level read there (log-linear between levels):
+// W + (1 - h^2) (T - W).
+vec2 fetched_var(float f)
+{
+    vec2 var = vec2(0.0);
+    for (int i = 0; i < FS_PATTERNS; i++) {
+        vec4 l = slot_lod_v[i];
+        float h = min(clamp(l.x * f + l.y, 0.0, 1.0) *
+                      clamp(l.w + l.z * f, 0.0, lod_cmax_v[i].x), 1.0);
+        vec4 wt = slope_wt_v[i];
+        float lam = clamp(wt.z * f + wt.w, 0.0, 15.0), l0 = floor(lam);
+        int i0 = int(l0), i1 = int(min(l0 + 1.0, 15.0));
+        vec2 w = wt.xy * mix(slot_wfrac_v[i0][i], slot_wfrac_v[i1][i], lam - l0);
+        var += w + (1.0 - h * h) * (wt.xy - w);
+    }
+    return var;
+}
+#endif
+
 // Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
 // Lambda(a) = (e^{-a^2} / (a sqrt(pi)) - erfc(a)) / 2, a = 1 / (sqrt(2) sigma tan theta), by the
 // rational fit of Walter et al. 2007 (eq. 27, the same Gaussian/Beckmann Lambda; relative error
@@ -280,10 +309,11 @@ void main()
     float fs = 0.02 + 0.98 * c5 * c5 * c5 * c5 * c5;   // Schlick, as in eq. 15
     float shadow = 1.0 + ross_lambda(cos_v, var_v) + ross_lambda(cos_l, var_v);
     float ross = cos_l > 0.0 ? fs / (8.0 * PI * hn * hn * hn * hn * cos_v * shadow) : 0.0;
-    v_sun = vec4(-hv.xy / max(hv.z, 0.05) - s0, ross, wx);
+    vec2 zeta = -hv.xy / max(hv.z, 0.05) - s0;
     vec2 var_base = a_geo_slope.zw + const_slope.zw + unresolved_var;
     vec2 k_base = a_geo_k.xy + const_k.xy;
 #ifdef QUALITY_HIGH
+    v_sun = vec4(zeta, ross, wx);
     v_base = vec4(var_base, k_base);
     // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
     vec3 r = reflect(-v, n);
@@ -296,10 +326,14 @@ void main()
     v_extra.x = whitecap_cover(whitecap_epsilon_v, v_base.z, v_base.w);
 #endif
 #else
-    // Low quality fetches no whitecap table: eq. 6's coverage from the vertex's moments, as
-    // high quality's runs without whitecap fetches take it.
-    v_base = vec4(var_base, whitecap_cover(whitecap_epsilon_v, k_base.x, k_base.y),
-                  lod_foot(a_rest));
+    // Low quality: the pixel's slope variance per vertex (fetched_var), so the vertex carries
+    // the Gaussian's inverse variances and normalisation with the Ross factor (ocean.frag)
+    // and eq. 26's terms of sigma (common.glsl fresnel_eff_terms).
+    float lf = lod_foot(a_rest);
+    vec2 var = max(var_base + fetched_var(lf), vec2(1e-4));
+    float sig_v = sqrt(mix(var.y, var.x, wx));
+    v_sun = vec4(zeta, ross * inversesqrt(var.x * var.y), fresnel_eff_e(sig_v));
+    v_base = vec4(0.5 / var, fresnel_eff_k(sig_v), lf);
 #endif
 #if FS_PATTERNS > 0
     v_uv0 = pattern_uv_offset[0] + a_rest * pattern_inv_size[0];
@@ -314,7 +348,12 @@ void main()
     v_uv3 = pattern_uv_offset[3] + a_rest * pattern_inv_size[3];
 #endif
 #ifndef QUALITY_HIGH
-    v_fog = haze(a_pos);
+    // and no whitecap table: eq. 6's coverage from the vertex's moments, as high quality's
+    // runs without whitecap fetches take it, mixed in with the haze: the pixel's radiance is
+    // its clear sea times v_fog.a plus v_fog.rgb.
+    float cover = whitecap_cover(whitecap_epsilon_v, k_base.x, k_base.y);
+    vec4 fog = haze(a_pos);
+    v_fog = vec4(fog.rgb + foam_radiance * (cover * fog.a), (1.0 - cover) * fog.a);
 #endif
     gl_Position = world_to_clip * vec4(a_pos, 1.0);
 }

@@ -39,7 +39,8 @@ enum ocean_uniform {
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_SUN,
     OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
-    OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_COUNT
+    OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_SLOT_LOD_V,
+    OU_SLOPE_WT_V, OU_LOD_CMAX_V, OU_WFRAC_V, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -50,7 +51,8 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
     "haze_sun", "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
-    "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax"
+    "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "slot_lod_v",
+    "slope_wt_v", "lod_cmax_v", "slot_wfrac_v"
 };
 
 enum sky_uniform {
@@ -1386,8 +1388,11 @@ static int weight_terms(const float *within, int stride, int top, float density,
     }
     out[2] = 0.0f;
     out[3] = 1.0f;
-    if (lev < 0 || !RUN_CONTRAST)
+    if (lev < 0 || !RUN_CONTRAST) {
+        if (!isfinite(drop_lf))
+            return top;   /* no fade: g = 1, the level unused */
         return (int)floorf(drop_lf - FADE_MARGIN - 0.5f * FADE_LEVELS + density + 0.5f);
+    }
     float v = means_var(within, stride, lev, top);
     if (v > 0.0f) {
         float lo = lev > 0 ? RUN_BLUR_GAIN * powf(means_var(within, stride, lev - 1, top) / v,
@@ -1448,6 +1453,29 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     glUniform3fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
+    /* low quality's vertex stage takes each slot's variance (ocean.vert fetched_var): its
+     * weight's terms, its patch's T and the level it reads at footprint f, a f + b (the run's
+     * level, or the per-pixel LOD f + log2 density), and per level the share of T within the
+     * texels, W / T (x + y; 1 from the top level on). Own names: a uniform in both stages
+     * needs one precision. */
+    float wt_v[SWELL_MAX_PATTERNS][4] = { { 0 } }, wfrac[SLOT_LEVELS][4] = { { 0 } };
+    for (int s = 0; s < k && s < r->nfs; s++) {
+        const struct fs_slot *sl = &r->slot[s];
+        int top = sl->top_level[0];
+        float t = sl->level_var[top][0] + sl->level_var[top][1];
+        wt_v[s][0] = svar[s][0];
+        wt_v[s][1] = svar[s][1];
+        wt_v[s][2] = r->run_lod ? 0.0f : 1.0f;
+        wt_v[s][3] = r->run_lod ? (float)((key >> (4 * s)) & 15u) : sl->log2_density[0];
+        for (int l = 0; l < SLOT_LEVELS; l++)
+            wfrac[l][s] = l >= top || t <= 0.0f
+                              ? 1.0f
+                              : (sl->level_var[l][0] + sl->level_var[l][1]) / t;
+    }
+    glUniform4fv(u[OU_WFRAC_V], SLOT_LEVELS, &wfrac[0][0]);
+    glUniform4fv(u[OU_SLOT_LOD_V], SWELL_MAX_PATTERNS, &sl_lod[0][0]);
+    glUniform4fv(u[OU_SLOPE_WT_V], SWELL_MAX_PATTERNS, &wt_v[0][0]);
+    glUniform2fv(u[OU_LOD_CMAX_V], SWELL_MAX_PATTERNS, &cmax[0][0]);
     glUniform2f(u[OU_LOD_FRAME], alt * alt, log2f(pix / alt));
 }
 
