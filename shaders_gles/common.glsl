@@ -114,14 +114,17 @@ float whitecap_cover(float eps, float mu, float kvar)
     return clamp(0.5 + 0.5 * erf_as((eps - mu) * inversesqrt(2.0 * max(kvar, 1e-6))), 0.0, 1.0);
 }
 
-// Reinhard x / (1 + x) of a radiance already scaled by the exposure (the renderer folds the
-// exposure into every radiance uniform), then gamma 2 (sqrt) as the sRGB transfer: within 0.03
-// of the sRGB curve above 0.1, and sqrt is one instruction on GLES2 GPUs where pow() is
-// exp2(log2()) per channel (4x slower on llvmpipe, measured).
+// Reinhard on the largest channel, x / (1 + max(x)), of a radiance already scaled by the
+// exposure (the renderer folds the exposure into every radiance uniform): the channels keep
+// their ratios, so the hue stays (a per-channel x / (1 + x) turned a sunset glitter of
+// irradiance (1, 0.39, 0.04) white) and none exceeds 1; one division instead of three. Then
+// gamma 2 (sqrt) as the sRGB transfer: within 0.03 of the sRGB curve above 0.1, and sqrt is
+// one instruction on GLES2 GPUs where pow() is exp2(log2()) per channel (4x slower on
+// llvmpipe, measured). src/tonemap.h is the C reference (test_glsl).
 vec3 tone_map(vec3 x)
 {
     // Clamped before the division: at the sun disc x can reach fp16's infinity, and inf / inf
     // came out as a dark NaN dot where the sun should be brightest.
     x = clamp(x, vec3(0.0), vec3(1.0e4));
-    return sqrt(x / (vec3(1.0) + x));
+    return sqrt(x * (1.0 / (1.0 + max(max(x.r, x.g), x.b))));
 }

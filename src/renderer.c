@@ -25,6 +25,7 @@
 #include "shader.h"
 #include "sky.h"
 #include "stream.h"
+#include "tonemap.h"
 #include "detile.h"
 
 #define SKY_MAP_SIZE 256
@@ -190,7 +191,6 @@ struct renderer {
     double camera_raise_m;      /* how far the last frame raised the camera (renderer_frame) */
     GLuint fresnel_tex, vbo, ibo, quad_vbo;
     struct chain_tex sky_tex;
-    struct chain_tex sky_display_tex; /* the sky map tone-mapped: the background's */
     GLuint sky_view_tex;              /* background: gains by elevation from the camera */
     float sky_view_scale[2][3];       /* texel / 255 x scale = gain x exposure, ray and mie */
     float sky_view_sun[3];            /* the sun's transmittance from the camera */
@@ -321,7 +321,6 @@ void renderer_destroy(struct renderer *r)
     gpu_buffer_destroy(r->gpu, &r->ibo);
     gpu_buffer_destroy(r->gpu, &r->vbo);
     gpu_texture_destroy(r->gpu, &r->sky_view_tex);
-    chain_destroy(r, &r->sky_display_tex);
     chain_destroy(r, &r->sky_tex);
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
     free(r->scratch);
@@ -528,28 +527,9 @@ static int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err
 
 static void update_sky_constants(struct renderer *r);
 
-/* Reinhard then gamma 2, as tone_map() in common.glsl, of a radiance times the exposure. */
-static float tone_map_1(float x)
-{
-    x = fminf(fmaxf(x, 0.0f), 1.0e4f);
-    return sqrtf(x / (1.0f + x));
-}
-
 static uint8_t unorm8(float x)
 {
     return (uint8_t)lrintf(255.0f * fminf(fmaxf(x, 0.0f), 1.0f));
-}
-
-/* The sky map in display space, every level (the background pass): texel ->
- * tone_map(exposure x radiance). */
-static int upload_sky_display(struct renderer *r, struct swell_err *err)
-{
-    size_t n = sky_level_offset(&r->sky, r->sky.levels);
-    float k = r->exposure * r->sky.map_scale / 255.0f;
-    for (size_t i = 0; i < n; i++)
-        r->scratch[i] = (i & 3) == 3 ? 255 : unorm8(tone_map_1(k * (float)r->sky.data[i]));
-    return upload_chain(&r->sky_display_tex, r->sky.size, r->sky.size, r->sky.levels, r->scratch,
-                        "renderer: display sky upload", err);
 }
 
 /* The light the sea reflects and refracts, radiances times the exposure (tone_map in
@@ -738,10 +718,7 @@ static int create_textures(struct renderer *r, struct swell_err *err)
         (rc = upload_atlas(r, r->fresnel_tex, r->scratch, err)))
         return rc;
     update_sky_constants(r);
-    if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, FORMAT_RGBA8, 0,
-                           "renderer: display sky map", &r->sky_display_tex, err)) ||
-        (rc = upload_sky_display(r, err)) ||
-        (rc = gpu_texture_create(r->gpu, SKY_VIEW_N, 2, 1, FORMAT_RGBA8, 0,
+    if ((rc = gpu_texture_create(r->gpu, SKY_VIEW_N, 2, 1, FORMAT_RGBA8, 0,
                                  "renderer: background sky table", &r->sky_view_tex, err)))
         return rc;
     r->sky_half = r->gpu->caps.half_float;
@@ -994,7 +971,7 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     r->d.sun_elev_deg = elev_deg;
     r->d.sun_azim_deg = azim_deg;
     update_sky_constants(r);
-    return upload_sky_display(r, err);
+    return 0;
 }
 
 /* Dequantised first texel of the top (1x1) level of a blended chain or, for a table that is
@@ -1106,8 +1083,10 @@ static int draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_
         /* radius: the disc's angle times the projection's scale (small-angle, near the axis) */
         float ndc[4] = { clip[0] / clip[3], clip[1] / clip[3], SUN_RADIUS_RAD * proj[0][0],
                          SUN_RADIUS_RAD * proj[1][1] };
+        float sun_rad[3];
         for (int c = 0; c < 3; c++)
-            sun_disp[c] = tone_map_1(r->exposure * r->sky_view_sun[c] / 6.8e-5f);
+            sun_rad[c] = r->exposure * r->sky_view_sun[c] / 6.8e-5f;
+        tone_map_rgb(sun_rad, sun_disp);
         glUseProgram(r->sunp.program);
         glUniform4fv(r->sunu[SU_SUN_NDC], 1, ndc);
         glUniform3fv(r->sunu[SU_SUN_DISPLAY], 1, sun_disp);
@@ -1663,8 +1642,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"
         : r->gpu->caps.prefer_highp ? "highp (software rasteriser: its mediump is emulated fp16)"
                                     : "mediump",
-        r->sky_half ? "half-float radiances (RGBA16F), tone-mapped RGBA8 copy for the background"
-        : "RGBA8 with a scale, tone-mapped RGBA8 copy for the background",
+        r->sky_half ? "half-float radiances (RGBA16F)" : "RGBA8 with a scale",
         r->d.quality == QUALITY_HIGH
             ? r->run_lod
               ? "high: Ross BRDF sun (eq. 15), sky map filtered at one level per run of rows "

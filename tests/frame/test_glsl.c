@@ -4,7 +4,8 @@
  * as 16 bits per value and compared with the C function in src/ at every pixel, on gles2-min
  * (mediump) and on the best tier.
  *
- * fresnel_eff (Bruneton 2010 eq. 26) against fresnel.c fresnel_effective_tex. */
+ * fresnel_eff (Bruneton 2010 eq. 26) against fresnel.c fresnel_effective_tex; tone_map against
+ * tonemap.h tone_map_rgb. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -20,6 +21,7 @@
 #include "gpu.h"
 #include "platform.h"
 #include "shader.h"
+#include "tonemap.h"
 #include "frame/frame_util.h"
 
 #define W 64
@@ -41,9 +43,10 @@ static void copy_file(const char *src_dir, const char *name)
     free(data);
 }
 
-/* Render fs over W x H at tier with uniform fn_in = in; out[y * W + x] = the value at pixel
- * (x, y), y counted from the bottom as gl_FragCoord. */
-static void render_fn(int tier, const char *fs, const float in[4], double *out)
+/* Render fs (with defines, or NULL) over W x H at tier with uniform fn_in = in;
+ * out[y * W + x] = the value at pixel (x, y), y counted from the bottom as gl_FragCoord. */
+static void render_fn(int tier, const char *fs, const char *defines, const float in[4],
+                      double *out)
 {
     struct gpu gpu;
     struct swell_err err = { 0 };
@@ -55,7 +58,8 @@ static void render_fn(int tier, const char *fs, const float in[4], double *out)
         fail_msg("gpu_init: %s", err.msg);
     struct shader_desc d = { .dir = g_dir, .vs_file = "fn.vert", .fs_file = fs,
                              .caps = &gpu.caps, .uniform_names = names, .uniform_count = 1,
-                             .uniform_locations = loc, .attribs = attribs, .attrib_count = 1 };
+                             .uniform_locations = loc, .attribs = attribs, .attrib_count = 1,
+                             .defines = defines };
     if (shader_program_build(&d, &prog, &err))
         fail_msg("%s at %s: %s", fs, gpu_tier_name(tier), err.msg);
     if (g_ph.be->begin_frame(g_ph.p, &err))
@@ -101,7 +105,7 @@ static void test_fresnel_eff(void **state)
     static double got[W * H];
     double old_max = 0.0;
     for (size_t t = 0; t < sizeof tiers / sizeof tiers[0]; t++) {
-        render_fn(tiers[t], "fn_fresnel_eff.frag", in, got);
+        render_fn(tiers[t], "fn_fresnel_eff.frag", NULL, in, got);
         double worst = 0.0;
         int wx = 0, wy = 0;
         for (int y = 0; y < H; y++)
@@ -126,6 +130,55 @@ static void test_fresnel_eff(void **state)
     assert_true(old_max > 0.1);   /* the grid of inputs tells the two forms apart */
 }
 
+/* The display transform: radiances u (c, 1 - c, 1/2), u in [0, 20] (the exposure folded in:
+ * the sea and sky sit near 0.1-2, the sun's glitter far above), c in [0, 1], every channel
+ * within 3e-3 of tonemap.h's (mediump's division and sqrt, the 16-bit read); and the hue
+ * kept: where every channel is resolved (> 0.1), each channel's share of the largest is
+ * sqrt of the radiance's within 1e-2, where a per-channel curve is off by up to 0.2. */
+static void test_tone_map(void **state)
+{
+    (void)state;
+    const float in[4] = { 0.0f, 20.0f / W, 0.0f, 1.0f / H };
+    static const int tiers[] = { TIER_GLES2_MIN, -1 };
+    static double got[3][W * H];
+    double per_channel_off = 0.0;
+    for (size_t t = 0; t < sizeof tiers / sizeof tiers[0]; t++) {
+        for (int ch = 0; ch < 3; ch++)
+            render_fn(tiers[t], "fn_tone_map.frag",
+                      ch == 0 ? "TM_CHANNEL=0" : ch == 1 ? "TM_CHANNEL=1" : "TM_CHANNEL=2", in,
+                      got[ch]);
+        double worst = 0.0, hue = 0.0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                float u = in[0] + in[1] * (x + 0.5f), c = in[2] + in[3] * (y + 0.5f);
+                float rad[3] = { u * c, u * (1.0f - c), 0.5f * u }, want[3];
+                tone_map_rgb(rad, want);
+                double m = 0.0, rm = fmax(fmax(rad[0], rad[1]), rad[2]), g[3];
+                for (int ch = 0; ch < 3; ch++) {
+                    g[ch] = got[ch][y * W + x];
+                    worst = fmax(worst, fabs(g[ch] - want[ch]));
+                    m = fmax(m, g[ch]);
+                }
+                for (int ch = 0; ch < 3 && rm > 0.0; ch++) {
+                    double share = sqrt(rad[ch] / rm);
+                    double pc = sqrt(rad[ch] / (1.0 + rad[ch])) /
+                                sqrt(rm / (1.0 + rm));
+                    if (g[ch] > 0.1 && m > 0.1)
+                        hue = fmax(hue, fabs(g[ch] / m - share));
+                    if (want[ch] > 0.1)
+                        per_channel_off = fmax(per_channel_off, fabs(pc - share));
+                }
+            }
+        print_message("tone_map at %s: worst |shader - tone_map_rgb| %.2e; hue: shares off by "
+                      "%.2e (a per-channel curve: %.3f)\n",
+                      tiers[t] < 0 ? "the best tier" : gpu_tier_name(tiers[t]), worst, hue,
+                      per_channel_off);
+        assert_true(worst < 3e-3);
+        assert_true(hue < 1e-2);
+    }
+    assert_true(per_channel_off > 0.1);   /* the grid tells a per-channel curve apart */
+}
+
 int main(void)
 {
     int open_rc = frame_open("test_glsl", W, H, &g_ph);
@@ -139,12 +192,15 @@ int main(void)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fresnel_eff),
+        cmocka_unit_test(test_tone_map),
     };
     copy_file("shaders_gles", "common.glsl");
     copy_file("tests/glsl", "fn.vert");
     copy_file("tests/glsl", "fn_fresnel_eff.frag");
+    copy_file("tests/glsl", "fn_tone_map.frag");
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
-    static const char *const copies[] = { "common.glsl", "fn.vert", "fn_fresnel_eff.frag" };
+    static const char *const copies[] = { "common.glsl", "fn.vert", "fn_fresnel_eff.frag",
+                                          "fn_tone_map.frag" };
     for (size_t k = 0; k < sizeof copies / sizeof copies[0]; k++) {
         char path[600];
         if (snprintf(path, sizeof path, "%s/%s", g_dir, copies[k]) < (int)sizeof path)

@@ -736,13 +736,15 @@ static void test_horizon_row(void **state)
  * and never blurs more. The horizon-row scene of test_horizon_row at limits 4 and 2 against
  * 16 (llvmpipe's; the shader clamps its own biases to the smaller limits). Measured: 4.74 and
  * 8.23 (the horizon band against gles3: 7.03, 14.67, 15.51); 5.91 and 8.31 with lambda taken
- * as 2 top - a1 - a2, true only for unclamped biases, which over-blurs where lambda > foot. */
+ * as 2 top - a1 - a2, true only for unclamped biases, which over-blurs where lambda > foot;
+ * 4.07 and 9.23 with the tone map on the largest channel (common.glsl tone_map), whose
+ * brighter, more saturated sky shows a sky sharper by the limit more. */
 static void test_bias_limit(void **state)
 {
     struct camera c;
     int best;
     float device;
-    const float limits[3] = { 16.0f, 4.0f, 2.0f }, bound[3] = { 0.0f, 5.3f, 9.0f };
+    const float limits[3] = { 16.0f, 4.0f, 2.0f }, bound[3] = { 0.0f, 5.3f, 9.6f };
     (void)state;
     int y0 = horizon_row_scene(&c, &best, &device);
     assert_true(device >= 16.0f);   /* llvmpipe's: the limits below are the shader's own */
@@ -1020,7 +1022,8 @@ static void test_resolved_drop(void **state)
  * sun and effective Fresnel, without the whitecap tables, eq. 27's sky filter and the haze per
  * pixel. On baked seas of 8 and 15 m/s wind, gles2-min, the lattice off in both (so both read
  * the same texels), from the surface, 1 km and 10 km: every 8 rows' mean luminance within 5 %
- * of high's (measured 1.0-2.0 %; Hu's single pass of before: 25-47 % darker at 1 km, the
+ * of high's (measured 1.9-4.5 %, 1.0-3.6 % before the tone map on the largest channel; Hu's
+ * single pass of before: 25-47 % darker at 1 km, the
  * distant glitter gone), except at the surface in a breaking sea: low takes eq. 6's coverage
  * from the patches' moments per vertex, which falls short of the foam high resolves from its
  * whitecap tables near the camera (the foam memory is not Gaussian): held at 30 % there,
