@@ -5,7 +5,8 @@
  * (mediump) and on the best tier.
  *
  * fresnel_eff (Bruneton 2010 eq. 26) against fresnel.c fresnel_effective_tex; tone_map against
- * tonemap.h tone_map_rgb. */
+ * tonemap.h tone_map_rgb; whitecap_cover (Dupuy 2012 eq. 6 with Abramowitz-Stegun's erf)
+ * against whitecap.c whitecap_dupuy_coverage (libm's erf). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -22,6 +23,7 @@
 #include "platform.h"
 #include "shader.h"
 #include "tonemap.h"
+#include "whitecap.h"
 #include "frame/frame_util.h"
 
 #define W 64
@@ -179,6 +181,35 @@ static void test_tone_map(void **state)
     assert_true(per_channel_off > 0.1);   /* the grid tells a per-channel curve apart */
 }
 
+/* Eq. 6's coverage for foam-memory means mu in [-1, 1] about the threshold and variances in
+ * [0.002, 0.5]: within 3e-3 of the C with libm's erf everywhere (Abramowitz-Stegun 7.1.25 is
+ * within 2.5e-5; the rest is mediump and the 16-bit read); the grid spans coverages from
+ * near 0 to near 1. */
+static void test_whitecap_cover(void **state)
+{
+    (void)state;
+    const float in[4] = { -1.0f, 2.0f / W, 0.002f, 0.5f / H };
+    static const int tiers[] = { TIER_GLES2_MIN, -1 };
+    static double got[W * H];
+    for (size_t t = 0; t < sizeof tiers / sizeof tiers[0]; t++) {
+        render_fn(tiers[t], "fn_whitecap_cover.frag", NULL, in, got);
+        double worst = 0.0, lo = 1.0, hi = 0.0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                double mu = in[0] + in[1] * (x + 0.5), var = in[2] + in[3] * (y + 0.5);
+                double want = whitecap_dupuy_coverage(0.0, mu, var);
+                worst = fmax(worst, fabs(got[y * W + x] - want));
+                lo = fmin(lo, want);
+                hi = fmax(hi, want);
+            }
+        print_message("whitecap_cover at %s: worst |shader - whitecap_dupuy_coverage| %.2e "
+                      "(coverages %.3f-%.3f)\n",
+                      tiers[t] < 0 ? "the best tier" : gpu_tier_name(tiers[t]), worst, lo, hi);
+        assert_true(worst < 3e-3);
+        assert_true(lo < 0.01 && hi > 0.99);
+    }
+}
+
 int main(void)
 {
     int open_rc = frame_open("test_glsl", W, H, &g_ph);
@@ -193,14 +224,16 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fresnel_eff),
         cmocka_unit_test(test_tone_map),
+        cmocka_unit_test(test_whitecap_cover),
     };
     copy_file("shaders_gles", "common.glsl");
     copy_file("tests/glsl", "fn.vert");
     copy_file("tests/glsl", "fn_fresnel_eff.frag");
     copy_file("tests/glsl", "fn_tone_map.frag");
+    copy_file("tests/glsl", "fn_whitecap_cover.frag");
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     static const char *const copies[] = { "common.glsl", "fn.vert", "fn_fresnel_eff.frag",
-                                          "fn_tone_map.frag" };
+                                          "fn_tone_map.frag", "fn_whitecap_cover.frag" };
     for (size_t k = 0; k < sizeof copies / sizeof copies[0]; k++) {
         char path[600];
         if (snprintf(path, sizeof path, "%s/%s", g_dir, copies[k]) < (int)sizeof path)
