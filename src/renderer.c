@@ -164,6 +164,8 @@ struct fs_slot {
                                        * little to fetch (DROP_RESOLVED) */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
+    float level_rho[SLOT_LEVELS];     /* per mip level: the correlation of the mean slopes of
+                                       * consecutive loop frames (loop_gain) */
 };
 
 struct renderer {
@@ -422,6 +424,49 @@ static float level_within_var(const struct swell_table *t, int l, int cm, int cs
     return (float)(acc / (double)n);
 }
 
+/* The correlation of level l's mean slopes (channels 0, 1) between consecutive loop frames f
+ * and f + 1 (mod F), over every frame pair; 1 where the level does not vary. */
+static float level_frame_rho(const struct swell_table *t, int l)
+{
+    if (l >= t->levels || t->format != FORMAT_RGBA8 || t->layers < 2)
+        return 1.0f;
+    size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
+    double mean[2] = { 0.0, 0.0 }, cov = 0.0, var = 0.0;
+    for (int f = 0; f < t->layers; f++) {
+        const uint8_t *a = t->data + table_offset(t, l, f);
+        for (size_t i = 0; i < n; i++) {
+            mean[0] += a[4 * i];
+            mean[1] += a[4 * i + 1];
+        }
+    }
+    mean[0] /= (double)n * t->layers;
+    mean[1] /= (double)n * t->layers;
+    for (int f = 0; f < t->layers; f++) {
+        const uint8_t *a = t->data + table_offset(t, l, f);
+        const uint8_t *b = t->data + table_offset(t, l, (f + 1) % t->layers);
+        for (size_t i = 0; i + 1 < n; i++)
+            for (int c = 0; c < 2; c++) {
+                double da = (double)a[4 * i + 4 + c] - a[4 * i + c];
+                double db = (double)b[4 * i + 4 + c] - b[4 * i + c];
+                cov += da * db;
+                var += da * da;
+            }
+    }
+    return var > 0.0 ? (float)fmax(cov / var, -1.0) : 1.0f;
+}
+
+/* Loop playback without detail loss (issue 14 item 5): the blend (1 - w) a + w b of two loop
+ * frames whose deviations from the mean correlate by rho has their variance times
+ * (1 - w)^2 + w^2 + 2 w (1 - w) rho (0.5 (1 + rho) at w = 1/2: the fastest waves of a band move
+ * 90-160 deg of phase per frame, rho well below 1), so the fetched deviation is scaled back by
+ * the inverse square root: the texture's contrast stays over the loop. */
+static float loop_gain(float rho, int w_fixed)
+{
+    float w = (float)w_fixed / (float)STREAM_W_ONE;
+    float v = (1.0f - w) * (1.0f - w) + w * w + 2.0f * w * (1.0f - w) * rho;
+    return v > 1e-3f ? 1.0f / sqrtf(v) : 1.0f;
+}
+
 static int top_level(const struct swell_table *t)
 {
     return (t->levels < SLOT_LEVELS ? t->levels : SLOT_LEVELS) - 1;
@@ -437,6 +482,7 @@ static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
         sl->level_var[l][0] = level_within_var(t, l, 0, 2);
         sl->level_var[l][1] = level_within_var(t, l, 1, 3);
         sl->level_kvar[l] = level_within_var(sl->wc, l, 0, 1);
+        sl->level_rho[l] = level_frame_rho(t, l);
     }
     sl->top_level[0] = top_level(t);
     sl->top_level[1] = top_level(sl->wc);
@@ -1353,8 +1399,11 @@ static float within_at(const float *within, int stride, int l, int top)
  * coarser than the pixel, so its bilinear texels change by 1 / sqrt(2) as much from pixel to
  * pixel as the finer neighbour's: RUN_BLUR_GAIN more contrast there keeps the texture the
  * viewer sees (|dI/dx|, test_seams) continuous across the runs, not only the variance
- * (measured at rough 1 km, 45 deg down: 4-row window step 1.65 -> 1.18). Also the level of the means' variance the
- * shader moves to within the pixel (the fade's middle at per-pixel LOD). */
+ * (measured at rough 1 km, 45 deg down: 4-row window step 1.65 -> 1.18). x is the level at
+ * the shader's footprint (ocean.vert lod_foot) times RUN_LOD_ROW_MEAN, as the runs choose
+ * their levels by (run_lod_key): so the lines meet where the runs do (anchored at the
+ * footprint itself, test_seams' worst step was 1.41 in high, now 1.32). Also the level of the
+ * means' variance the shader moves to within the pixel (the fade's middle at per-pixel LOD). */
 static int weight_terms(const float *within, int stride, int top, float density, float drop_lf,
                         int lev, float out[4], float *cmax)
 {
@@ -1382,7 +1431,7 @@ static int weight_terms(const float *within, int stride, int top, float density,
         lo = fminf(lo, RUN_CONTRAST_MAX);
         float hi = lev < top ? powf(means_var(within, stride, lev + 1, top) / v, 0.25f) : 0.0f;
         out[2] = hi - lo;                                   /* per octave of footprint */
-        out[3] = lo + out[2] * (density - (float)lev + 0.5f);
+        out[3] = lo + out[2] * (density - (float)lev + 0.5f + log2f(RUN_LOD_ROW_MEAN));
         /* no more than at x = lev - 0.5: a row's vertices reach beyond it, and the line
          * extrapolated there overshoots */
         *cmax = fmaxf(lo, hi);
@@ -1394,7 +1443,32 @@ static int weight_terms(const float *within, int stride, int top, float density,
  * run_lod), the means (top level) and the variance of the means at the level the shader
  * treats, and the footprint's terms for ocean.vert lod_foot (camera altitude alt, pixel angle
  * pix, as draw_runs). */
-static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix)
+/* The loop gain of slot sl at fractional level lam (rho linear between whole levels). */
+static float loop_gain_at(const struct fs_slot *sl, float lam)
+{
+    int top = sl->top_level[0];
+    lam = fminf(fmaxf(lam, 0.0f), (float)top);
+    int l0 = (int)floorf(lam), l1 = l0 < top ? l0 + 1 : l0;
+    float f = lam - (float)l0;
+    float rho = sl->level_rho[l0] + (sl->level_rho[l1] - sl->level_rho[l0]) * f;
+    return loop_gain(rho, sl->phase_valid ? sl->phase.w : 0);
+}
+
+/* Scales a slot's contrast line c(f) = l[3] + l[2] f (weight_terms) by the loop gain at both
+ * ends fa, fb of the footprints it spans (log2 m; the run's rows, or its level +- 1/2 with
+ * run_lod): the line through the products, so neighbouring runs meet at equal gain. */
+static void apply_loop_gain(const struct fs_slot *sl, float fa, float fb, float l[4], float *cmax)
+{
+    float d = sl->log2_density[0];
+    float ga = loop_gain_at(sl, fa + d), gb = loop_gain_at(sl, fb + d);
+    float ca = (l[3] + l[2] * fa) * ga, cb = (l[3] + l[2] * fb) * gb;
+    l[2] = fb - fa > 1e-3f ? (cb - ca) / (fb - fa) : 0.0f;
+    l[3] = ca - l[2] * fa;
+    *cmax *= fmaxf(ga, gb);
+}
+
+static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix,
+                          float lf_far, float lf_near)
 {
     const GLint *u = r->ou[VARIANT(k, kw)];
     float sl_lod[SWELL_MAX_PATTERNS][4] = { { 0 } }, wc_lod[SWELL_MAX_PATTERNS][4] = { { 0 } };
@@ -1409,6 +1483,14 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         int lev = r->run_lod ? (int)((key >> (4 * s)) & 15u) : -1;
         lev = weight_terms(within, 1, sl->top_level[0], sl->log2_density[0], drop, lev,
                            sl_lod[s], &cmax[s][0]);
+        /* the loop blend's contrast back (loop_gain), over the footprints the run spans: its
+         * rows', or with run_lod its level's (+- 1/2 level, where weight_terms' line ends) */
+        if (r->run_lod)
+            apply_loop_gain(sl, (float)lev - 0.5f - sl->log2_density[0] - log2f(RUN_LOD_ROW_MEAN),
+                            (float)lev + 0.5f - sl->log2_density[0] - log2f(RUN_LOD_ROW_MEAN),
+                            sl_lod[s], &cmax[s][0]);
+        else
+            apply_loop_gain(sl, lf_near, lf_far, sl_lod[s], &cmax[s][0]);
         smu[s][0] = sl->top_slope[0];
         smu[s][1] = sl->top_slope[1];
         smu[s][2] = within_at(&sl->level_var[0][0], 2, lev, sl->top_level[0]);
@@ -1500,7 +1582,9 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
             set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
             set_run_lods(r, run_k, run_kw, run_key, sqrtf(run_d2_far * run_d2), alt);
-            set_slot_lods(r, run_k, run_kw, run_key, alt, pix);
+            set_slot_lods(r, run_k, run_kw, run_key, alt, pix,
+                          log2f(row_footprint(run_d2_far, alt, pix) * RUN_LOD_ROW_MEAN),
+                          log2f(row_footprint(run_d2, alt, pix) * RUN_LOD_ROW_MEAN));
             glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;
