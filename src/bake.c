@@ -338,8 +338,12 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
     if ((r = ocean_plan_patterns(&s, s.patterns, s.size_fs, out->pattern, &beyond_x, &beyond_y,
                                  err)))
         goto fail;
-    out->mss_unresolved_x = (float)beyond_x;
-    out->mss_unresolved_y = (float)beyond_y;
+    /* below every table: the spectrum's tail beyond the last pattern, and what the spectrum
+     * lacks of Cox & Munk's total in strong wind (spectrum_mss_deficit) */
+    double deficit_x, deficit_y;
+    spectrum_mss_deficit(&s, &deficit_x, &deficit_y);
+    out->mss_unresolved_x = (float)(beyond_x + deficit_x);
+    out->mss_unresolved_y = (float)(beyond_y + deficit_y);
 
     int n = s.size_fs, F = s.frames, levels = ilog2(n) + 1;
     size_t texels = (size_t)n * (size_t)n, count = texels * (size_t)F;

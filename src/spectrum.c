@@ -7,6 +7,7 @@
 #include "spectrum.h"
 
 #include <math.h>
+#include <stddef.h>
 
 #define G SWELL_GRAVITY
 #define TWO_PI 6.283185307179586
@@ -181,6 +182,27 @@ double spectrum_mss_cox_munk(double wind_speed_mps)
     return 0.003 + 5.12e-3 * wind_speed_mps;
 }
 
+void spectrum_mss_cox_munk_xy(const struct seastate *s, double *mss_x, double *mss_y)
+{
+    double u = s->wind_speed_mps, up = 3.16e-3 * u, cross = 0.003 + 1.92e-3 * u;
+    /* the two fits sum to 0.003 + 5.08e-3 U: scaled to the total's fit */
+    double k = spectrum_mss_cox_munk(u) / (up + cross);
+    double c = cos(wind_dir_rad(s)), sn = sin(wind_dir_rad(s));
+    up *= k;
+    cross *= k;
+    *mss_x = up * c * c + cross * sn * sn;
+    *mss_y = up * sn * sn + cross * c * c;
+}
+
+void spectrum_mss_deficit(const struct seastate *s, double *dx, double *dy)
+{
+    double cx, cy, tx, ty;
+    spectrum_mss_cox_munk_xy(s, &cx, &cy);
+    spectrum_band_moments(s, 0.0, spectrum_k_cutoff(s), NULL, &tx, &ty);
+    *dx = cx > tx ? cx - tx : 0.0;
+    *dy = cy > ty ? cy - ty : 0.0;
+}
+
 /* Lowest wavenumber worth integrating from: at k_p / 20 (omega_p / omega >= 4.4) the factor
  * exp(-1.25 (omega_p / omega)^4) < 1e-200. */
 static double k_floor(const struct seastate *s)
@@ -246,12 +268,19 @@ void spectrum_band_moments(const struct seastate *s, double k0, double k1, doubl
  * short gravity and capillary waves that carry most of the slope (Cox & Munk 1954 measured
  * mss = 0.003 + 5.12e-3 U, rising linearly with wind). Rather than bolting on a second
  * (capillary) spectrum, the gravity spectrum's tail is integrated up to the k_c at which the
- * total mss equals Cox & Munk's, clamped to [K_CUTOFF_LO, K_CUTOFF_HI]. The renderer's BRDF
+ * mss along one axis equals Cox & Munk's share, clamped to [K_CUTOFF_LO, K_CUTOFF_HI]; the rest
+ * of their total is spectrum_mss_deficit. The renderer's BRDF
  * then carries everything between the last pattern's band and k_c (Bruneton 2010 eq. 4), so
  * the total slope variance the image sees matches the measured sea surface. */
 double spectrum_k_cutoff(const struct seastate *s)
 {
-    double target = spectrum_mss_cox_munk(s->wind_speed_mps);
+    /* The spectrum's slope splits between x and y in a fixed ratio (x_fraction); the cut-off
+     * fills the axis that reaches Cox & Munk's share first, so neither exceeds it and
+     * spectrum_mss_deficit tops up the other: the total and the up/crosswind split both match
+     * wherever the cut-off lies within its range. */
+    double cx, cy, fx = x_fraction(s);
+    spectrum_mss_cox_munk_xy(s, &cx, &cy);
+    double target = fmin(fx > 0.0 ? cx / fx : HUGE_VAL, fx < 1.0 ? cy / (1.0 - fx) : HUGE_VAL);
     double lo = k_floor(s);
     if (lo >= K_CUTOFF_HI)
         return K_CUTOFF_HI;

@@ -29,6 +29,15 @@ double spectrum_k_of_omega(double omega, double depth_m);
 double spectrum_peak_k(const struct seastate *s);
 /* Cox & Munk 1954 clean-surface total mean-square slope, 0.003 + 5.12e-3 U (U in m/s). */
 double spectrum_mss_cox_munk(double wind_speed_mps);
+/* ...and its split along world x and y for the sea state's wind direction: upwind 3.16e-3 U,
+ * crosswind 0.003 + 1.92e-3 U (Cox & Munk 1954's clean-surface fits), scaled to sum to the
+ * total's fit. */
+void spectrum_mss_cox_munk_xy(const struct seastate *s, double *mss_x, double *mss_y);
+/* The slope variance the spectrum up to spectrum_k_cutoff lacks of Cox & Munk's, per axis
+ * (>= 0): in strong wind the omega^-5 tail, cut at 1e4 rad/m where viscosity damps the
+ * capillaries, saturates below the measured total; the renderer carries it as unresolved
+ * variance (Bruneton 2010 eq. 4), as it does the tail beyond the last pattern. */
+void spectrum_mss_deficit(const struct seastate *s, double *dx, double *dy);
 
 /* Moments of Psi over the annulus k0 <= |k| < k1 (rad/m), by quadrature: var = integral Psi,
  * mss_x = integral kx^2 Psi, mss_y = integral ky^2 Psi (world x east, y north; Bruneton 2010
