@@ -293,6 +293,11 @@ static void use_baked(uint64_t budget, float wind)
     struct swell_err err = { 0 };
     ss.budget_bytes = budget;
     ss.wind_speed_mps = wind;
+    if (fx.baked_live) {   /* a test baking a second sea */
+        tables_destroy(&fx.baked);
+        fx.baked_live = 0;
+        fx.tables = fx.synthetic;
+    }
     if (swell_bake(&ss, NULL, &fx.baked, &err))
         fail_msg("swell_bake: %s", err.msg);
     fx.baked_live = 1;
