@@ -255,6 +255,17 @@ static void close_sea(struct sea *sea)
     tables_destroy(&sea->t);
 }
 
+/* The camera of view v at pitch pitch. */
+static void view_camera(const struct view *v, float pitch, struct camera *c)
+{
+    camera_defaults(c);
+    c->pos[0] = 1234.5;
+    c->pos[1] = -678.9;
+    c->pos[2] = v->alt;
+    c->pitch_deg = pitch;
+    c->heading_deg = HEADING;
+}
+
 /* The profile of view v at pitch pitch, averaged over TIMES frames; the last frame in g_img. */
 static void view_profile(struct renderer *r, const struct view *v, float pitch,
                          struct profile *p)
@@ -262,12 +273,7 @@ static void view_profile(struct renderer *r, const struct view *v, float pitch,
     struct swell_err err = { 0 };
     struct camera c;
     memset(p, 0, sizeof *p);
-    camera_defaults(&c);
-    c.pos[0] = 1234.5;
-    c.pos[1] = -678.9;
-    c.pos[2] = v->alt;
-    c.pitch_deg = pitch;
-    c.heading_deg = HEADING;
+    view_camera(v, pitch, &c);
     for (int i = 0; i < TIMES; i++) {
         if (frame_draw(&g_ph, r, &c, 3.0 + 2.3 * i, W, H, g_img, &err))
             fail_msg("frame: %s", err.msg);
@@ -419,12 +425,7 @@ static void test_detail_steady(void **state)
             for (size_t v = 0; v < 2; v++) {
                 struct swell_err err = { 0 };
                 struct camera c;
-                camera_defaults(&c);
-                c.pos[0] = 1234.5;
-                c.pos[1] = -678.9;
-                c.pos[2] = views[v].alt;
-                c.pitch_deg = views[v].pitch;
-                c.heading_deg = HEADING;
+                view_camera(&views[v], views[v].pitch, &c);
                 int first = horizon_row(&c) + HORIZON_MARGIN;
                 double lo = INFINITY, hi = 0.0;
                 for (int i = 0; i < BREATH_TIMES; i++) {
