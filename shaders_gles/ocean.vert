@@ -137,7 +137,8 @@ uniform vec2 total_var;                 // every pattern's slope variance + unre
 uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's, own name: a
                                         // uniform in both stages needs one precision)
 #endif
-varying vec4 v_sun;         // zeta_h - s0, the Ross factor, eq. 25's x weight
+varying vec4 v_sun;         // zeta_h - s0, the Ross factor, eq. 25's x weight (low: the Ross
+                            // factor over 2 pi sigma_x sigma_y, eq. 26's exponent)
 #ifdef QUALITY_HIGH
 uniform float sky_map_size;             // texels
 varying vec4 v_base;        // slope variance xy, foam memory mean and variance not fetched

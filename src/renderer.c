@@ -164,7 +164,10 @@ struct fs_slot {
                                        * little to fetch (DROP_RESOLVED) */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
-    float level_rho[SLOT_LEVELS];     /* per mip level: the correlation of the mean slopes of
+    float level_within[SLOT_LEVELS];  /* ...level_var's x + y (weight_terms)... */
+    float level_wfrac[SLOT_LEVELS];   /* ...and its share of the top level's (ocean.vert
+                                       * fetched_var; 1 from the top level on) */
+    float level_rho[SLOT_LEVELS];     /* per mip level: the correlation of the slope detail of
                                        * consecutive loop frames (loop_gain) */
 };
 
@@ -424,23 +427,15 @@ static float level_within_var(const struct swell_table *t, int l, int cm, int cs
     return (float)(acc / (double)n);
 }
 
-/* The correlation of level l's mean slopes (channels 0, 1) between consecutive loop frames f
- * and f + 1 (mod F), over every frame pair; 1 where the level does not vary. */
+/* The correlation of level l's slope detail (the differences of neighbouring texels' mean
+ * slopes, channels 0, 1: the high-pass a viewer sees) between consecutive loop frames f and
+ * f + 1 (mod F), over every frame pair; 1 where the level does not vary. */
 static float level_frame_rho(const struct swell_table *t, int l)
 {
     if (l >= t->levels || t->format != FORMAT_RGBA8 || t->layers < 2)
         return 1.0f;
     size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
-    double mean[2] = { 0.0, 0.0 }, cov = 0.0, var = 0.0;
-    for (int f = 0; f < t->layers; f++) {
-        const uint8_t *a = t->data + table_offset(t, l, f);
-        for (size_t i = 0; i < n; i++) {
-            mean[0] += a[4 * i];
-            mean[1] += a[4 * i + 1];
-        }
-    }
-    mean[0] /= (double)n * t->layers;
-    mean[1] /= (double)n * t->layers;
+    double cov = 0.0, var = 0.0;
     for (int f = 0; f < t->layers; f++) {
         const uint8_t *a = t->data + table_offset(t, l, f);
         const uint8_t *b = t->data + table_offset(t, l, (f + 1) % t->layers);
@@ -483,15 +478,18 @@ static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
         sl->level_var[l][1] = level_within_var(t, l, 1, 3);
         sl->level_kvar[l] = level_within_var(sl->wc, l, 0, 1);
         sl->level_rho[l] = level_frame_rho(t, l);
+        sl->level_within[l] = sl->level_var[l][0] + sl->level_var[l][1];
     }
     sl->top_level[0] = top_level(t);
     sl->top_level[1] = top_level(sl->wc);
-    /* The fraction resolved by the mip means at level l: 1 - within(l) / within(top). */
     int top = sl->top_level[0];
-    float total = sl->level_var[top][0] + sl->level_var[top][1];
+    float total = sl->level_within[top];
+    for (int l = 0; l < SLOT_LEVELS; l++)
+        sl->level_wfrac[l] = l >= top || total <= 0.0f ? 1.0f : sl->level_within[l] / total;
+    /* The fraction resolved by the mip means at level l: 1 - within(l) / within(top). */
     sl->drop_lod = SLOT_LEVELS;
     for (int l = top; l >= 0 && total > 0.0f; l--) {
-        if (total - (sl->level_var[l][0] + sl->level_var[l][1]) >= DROP_RESOLVED * total)
+        if (total - sl->level_within[l] >= DROP_RESOLVED * total)
             break;
         sl->drop_lod = l;
     }
@@ -1474,15 +1472,14 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     float sl_lod[SWELL_MAX_PATTERNS][4] = { { 0 } }, wc_lod[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float smu[SWELL_MAX_PATTERNS][4] = { { 0 } }, wmu[SWELL_MAX_PATTERNS][3] = { { 0 } };
     float svar[SWELL_MAX_PATTERNS][2] = { { 0 } }, cmax[SWELL_MAX_PATTERNS][2] = { { 0 } };
+    float wt_v[SWELL_MAX_PATTERNS][4] = { { 0 } }, wfrac[SLOT_LEVELS][4] = { { 0 } };
     for (int s = 0; s < k && s < r->nfs; s++) {
         const struct fs_slot *sl = &r->slot[s];
         float drop = r->d.fetch_all ? INFINITY : slot_drop_foot(r, s, DROP_FOOTPRINT, 1);
-        float within[SLOT_LEVELS];   /* x + y: the contrast of both */
-        for (int l = 0; l < SLOT_LEVELS; l++)
-            within[l] = sl->level_var[l][0] + sl->level_var[l][1];
-        int lev = r->run_lod ? (int)((key >> (4 * s)) & 15u) : -1;
-        lev = weight_terms(within, 1, sl->top_level[0], sl->log2_density[0], drop, lev,
-                           sl_lod[s], &cmax[s][0]);
+        int key_lev = (int)((key >> (4 * s)) & 15u);
+        /* on x + y: the contrast of both */
+        int lev = weight_terms(sl->level_within, 1, sl->top_level[0], sl->log2_density[0], drop,
+                               r->run_lod ? key_lev : -1, sl_lod[s], &cmax[s][0]);
         /* the loop blend's contrast back (loop_gain), over the footprints the run spans: its
          * rows', or with run_lod its level's (+- 1/2 level, where weight_terms' line ends) */
         if (r->run_lod)
@@ -1497,6 +1494,14 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         smu[s][3] = within_at(&sl->level_var[0][1], 2, lev, sl->top_level[0]);
         svar[s][0] = sl->top_slope[2];
         svar[s][1] = sl->top_slope[3];
+        /* low quality's vertex stage (ocean.vert fetched_var): T and the level read at
+         * footprint f, a f + b (the run's level, or the per-pixel LOD f + log2 density) */
+        wt_v[s][0] = svar[s][0];
+        wt_v[s][1] = svar[s][1];
+        wt_v[s][2] = r->run_lod ? 0.0f : 1.0f;
+        wt_v[s][3] = r->run_lod ? (float)key_lev : sl->log2_density[0];
+        for (int l = 0; l < SLOT_LEVELS; l++)
+            wfrac[l][s] = sl->level_wfrac[l];
         if (s >= kw)
             continue;
         float wdrop = r->d.fetch_all ? INFINITY
@@ -1514,25 +1519,8 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     glUniform3fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
-    /* low quality's vertex stage takes each slot's variance (ocean.vert fetched_var): its
-     * weight's terms, its patch's T and the level it reads at footprint f, a f + b (the run's
-     * level, or the per-pixel LOD f + log2 density), and per level the share of T within the
-     * texels, W / T (x + y; 1 from the top level on). Own names: a uniform in both stages
-     * needs one precision. */
-    float wt_v[SWELL_MAX_PATTERNS][4] = { { 0 } }, wfrac[SLOT_LEVELS][4] = { { 0 } };
-    for (int s = 0; s < k && s < r->nfs; s++) {
-        const struct fs_slot *sl = &r->slot[s];
-        int top = sl->top_level[0];
-        float t = sl->level_var[top][0] + sl->level_var[top][1];
-        wt_v[s][0] = svar[s][0];
-        wt_v[s][1] = svar[s][1];
-        wt_v[s][2] = r->run_lod ? 0.0f : 1.0f;
-        wt_v[s][3] = r->run_lod ? (float)((key >> (4 * s)) & 15u) : sl->log2_density[0];
-        for (int l = 0; l < SLOT_LEVELS; l++)
-            wfrac[l][s] = l >= top || t <= 0.0f
-                              ? 1.0f
-                              : (sl->level_var[l][0] + sl->level_var[l][1]) / t;
-    }
+    /* low quality's vertex stage: the weights' terms, T and its level, W / T per level (own
+     * names: a uniform in both stages needs one precision) */
     glUniform4fv(u[OU_WFRAC_V], SLOT_LEVELS, &wfrac[0][0]);
     glUniform4fv(u[OU_SLOT_LOD_V], SWELL_MAX_PATTERNS, &sl_lod[0][0]);
     glUniform4fv(u[OU_SLOPE_WT_V], SWELL_MAX_PATTERNS, &wt_v[0][0]);
