@@ -248,19 +248,6 @@ vec2 fetched_var(float f)
 }
 #endif
 
-// Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
-// Lambda(a) = (e^{-a^2} / (a sqrt(pi)) - erfc(a)) / 2, a = 1 / (sqrt(2) sigma tan theta), by the
-// rational fit of Walter et al. 2007 (eq. 27, the same Gaussian/Beckmann Lambda; relative error
-// below 0.35 % for the shadowing term 1 / (1 + Lambda)).
-float ross_lambda(float cos_t, float var)
-{
-    float c = clamp(cos_t, 0.01, 0.9999);
-    float a = c / sqrt((1.0 - c * c) * 2.0 * var);
-    if (a >= 1.6)
-        return 0.0;
-    return (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
-}
-
 void main()
 {
 #ifdef VTF_PATTERNS
