@@ -19,10 +19,19 @@
 #define PM_U195_PER_U10 1.026
 
 /* JONSWAP (Hasselmann et al. 1973) with U10 and dimensionless fetch X = g F / U10^2:
- * alpha = 0.076 X^-0.22, omega_p = 22 (g^2 / (U10 F))^(1/3) = 22 (g / U10) X^(-1/3). */
+ * omega_p = 22 (g^2 / (U10 F))^(1/3) = 22 (g / U10) X^(-1/3), and the height from their energy
+ * law g^2 m0 / U10^4 = 1.6e-7 X, at most Pierson-Moskowitz's fully developed m0.
+ * Their alpha = 0.076 X^-0.22 is not used: with gamma 3.3 and that omega_p it integrates to
+ * 1.30-1.36x the law's Hs at the presets' fetches (and 1.29x PM's at full development), the
+ * parameters having been fitted separately. Instead alpha = m0 omega_p^4 / (g^2 J), as
+ * DNV-RP-C205 §3.5.5 parameterises JONSWAP by Hs and Tp (its A_gamma = 1 - 0.287 ln gamma
+ * is 5 J's reciprocal within 0.3 %), with J = the integral over x = omega / omega_p of
+ * x^-5 exp(-5/4 x^-4) gamma^r(x) (test_spectrum computes it by quadrature). */
 #define JONSWAP_GAMMA 3.3
 #define JONSWAP_SIGMA_LOW 0.07
 #define JONSWAP_SIGMA_HIGH 0.09
+#define JONSWAP_J 0.3049897
+#define JONSWAP_ENERGY_LAW 1.6e-7
 
 /* Cut-off search range, rad/m. Below 100 rad/m (6 cm) the cut-off would remove short gravity
  * waves that the tables resolve; above 1e4 rad/m (0.6 mm) viscosity damps capillary waves
@@ -117,6 +126,16 @@ static double kitaigorodskii(double omega, double depth_m)
     return 1.0;
 }
 
+double spectrum_jonswap_m0(const struct seastate *s)
+{
+    double u = s->wind_speed_mps;
+    double x = G * s->fetch_km * 1000.0 / (u * u);
+    double u195 = PM_U195_PER_U10;   /* U19.5 / U10: PM's m0 = alpha U19.5^4 / (4 beta g^2) */
+    double full = PM_ALPHA * u195 * u195 * u195 * u195 / (4.0 * PM_BETA);
+    double e = JONSWAP_ENERGY_LAW * x;
+    return (e < full ? e : full) * u * u * u * u / (G * G);
+}
+
 double spectrum_S_omega(const struct seastate *s, double omega)
 {
     if (!(omega > 0.0))
@@ -125,7 +144,7 @@ double spectrum_S_omega(const struct seastate *s, double omega)
     double r4 = pow(wp / omega, 4.0);
     if (s->spectrum == SPECTRUM_PM)
         return PM_ALPHA * G * G * pow(omega, -5.0) * exp(-1.25 * r4);
-    double alpha = 0.076 * pow(jonswap_fetch(s), -0.22);
+    double alpha = spectrum_jonswap_m0(s) * wp * wp * wp * wp / (G * G * JONSWAP_J);
     double sigma = omega <= wp ? JONSWAP_SIGMA_LOW : JONSWAP_SIGMA_HIGH;
     double d = (omega - wp) / (sigma * wp);
     double peak = pow(JONSWAP_GAMMA, exp(-0.5 * d * d));

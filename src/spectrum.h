@@ -16,6 +16,10 @@ double spectrum_omega(double k, double depth_m);           /* rad/s */
 double spectrum_domega_dk(double k, double depth_m);       /* group velocity, m/s */
 double spectrum_peak_omega(const struct seastate *s);      /* rad/s */
 double spectrum_S_omega(const struct seastate *s, double omega);  /* m^2 s/rad */
+/* The height variance JONSWAP and TMA (before its depth function) are scaled to, m^2:
+ * Hasselmann et al. 1973's fetch law g^2 m0 / U10^4 = 1.6e-7 X, at most Pierson-Moskowitz's
+ * fully developed sea (Hs = 4 sqrt(m0)). */
+double spectrum_jonswap_m0(const struct seastate *s);
 /* Directional spreading D(theta) normalised so integral over (-pi, pi] is 1. */
 double spectrum_spreading(const struct seastate *s, double theta_rad);
 /* Psi(kx, ky), m^4: S(omega(k)) domega/dk / k * D(theta). */
