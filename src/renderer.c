@@ -585,19 +585,12 @@ static void sea_light(const struct renderer *r, float sun[3], float sea[3], floa
     float e = r->exposure;
     for (int c = 0; c < 3; c++) {
         float lit = r->sky.sun_irr[c] * fmaxf(r->sky.sun_dir[2], 0.0f) + r->sky.sky_irr[c];
-        sun[c] = e * r->sky.sun_irr[c];
+        sun[c] = r->d.no_sun ? 0.0f : e * r->sky.sun_irr[c];
         sea[c] = e * sea_colour[c] * lit / (float)M_PI;
         foam[c] = e * 0.4f * lit / (float)M_PI;
     }
 }
 
-/* Low quality's Fresnel texture: A = F as baked (Hu §5.1) and RGB what Hu's eq. 3 adds to
- * F x sky, in display space: (1 - F) x the tone-mapped water colour + Hu §5.3's Phong term
- * max(V_b . L_r, 0)^512 for this sun in its colour, V_b the bumped view vector the baked RGB
- * holds and L_r the sun mirrored in the mean surface (evaluated per texel instead of per
- * pixel). Both are linear in the filtered texels, so filtering the sum is filtering each; the
- * pass is then one multiply-add (on llvmpipe's emulated fp16, gles2-min low 19.3 -> 17.7 ms at
- * the calm surface). Sums over 1 are white on screen either way. */
 /* The Fresnel textures are an atlas (detile.h): the F x F Fresnel texels in rows [0, F), row F a
  * copy of row F - 1 (a bilinear lookup at the disc's edge, fresnel_uv_scale, reads no hash), the
  * lattice hash's cells (detile_cell_table) in rows [F + 1, F + 1 + DETILE_N), columns

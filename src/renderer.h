@@ -44,6 +44,10 @@ struct renderer_desc {
                                          * patch's (tests compare) */
     int no_sky;                         /* 1: draw no sky, so the sea's silhouette meets the
                                          * clear colour (tests: the horizon row) */
+    int no_sun;                         /* 1: the sea reflects no sun (eq. 15's term 0; the
+                                         * foam and the water body stay sunlit), so the
+                                         * difference from a frame with it is the glitter
+                                         * (tests: its width against Cox & Munk) */
     int detile;                         /* enum detile_mode (swell --detile); default AUTO.
                                          * The CPU query (sea.h) takes renderer_detile's flag */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
