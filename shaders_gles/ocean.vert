@@ -25,6 +25,7 @@ uniform vec4 grid_frame;                // column shares at the screen's edges (
 uniform vec4 grid_range;                // column angles: left, screen left, right, right edge
 uniform vec4 grid_rows;                 // the camera's depression at the top row and the
                                         // screen bottom, their rows' share, its height (grid.h)
+uniform vec3 grid_rows_hz;              // the horizon rows: 1 / one row, u*, the even slope
 uniform vec3 grid_margin;               // projector angles of the screen bottom and the last
                                         // row; minus the projector's pitch, radians
 uniform vec3 grid_step;                 // one cell in a_grid units (x, y); far distance, m
@@ -59,9 +60,13 @@ vec2 grid_rest(vec2 g)
              : g.x < grid_frame.y ? mix(grid_range.y, grid_range.z,
                                         (g.x - grid_frame.x) / (grid_frame.y - grid_frame.x))
              : mix(grid_range.z, grid_range.w, (g.x - grid_frame.y) / max(1.0 - grid_frame.y, 1e-6));
-    // grid_row_tan: rows on the screen evenly in the camera's depression dc, seen from the
-    // projector at depression atan2(A sin dc, h cos dc); the rest evenly in its own angle
-    float dc = mix(grid_rows.x, grid_rows.y, g.y / grid_rows.z);
+    // grid_row_tan: rows on the screen in the camera's depression dc, evenly but for the
+    // horizon rows' halving distances, seen from the projector at depression
+    // atan2(A sin dc, h cos dc); the rest evenly in its own angle
+    float u = g.y / grid_rows.z;
+    float xs = grid_rows.x * (exp2(grid_rows_hz.y * grid_rows_hz.x) - 1.0);
+    float dc = grid_rows.x + (u < grid_rows_hz.y ? grid_rows.x * (exp2(u * grid_rows_hz.x) - 1.0)
+                                                 : xs + grid_rows_hz.z * (u - grid_rows_hz.y));
     float ay = g.y < grid_rows.z
         ? grid_margin.z - atan(grid_frame.w * sin(dc), grid_rows.w * cos(dc))
         : mix(grid_margin.x, grid_margin.y, (g.y - grid_rows.z) / max(1.0 - grid_rows.z, 1e-6));

@@ -60,10 +60,16 @@ void grid_row_span(const struct grid *g, int row, int *first, int *count, float 
  * camera itself): grid parameter (u, v) in [0, 1]^2 is the ray fwd + tan(phi(u)) right +
  * grid_row_tan(v) up. Columns: phi piecewise linear over col_ang (left edge, the screen's left
  * and right edges, right edge), col_split[0..1] of them at the inner two knots (grid_warp).
- * Rows: the first row_split of them over the screen, evenly spaced in the camera's depression
- * angle (row_cam: the top row's and the screen bottom's, for a camera row_h above the sea
- * plane), so their spacing on the screen is the camera's whatever the projector; the rest
- * evenly in the projector's angle from row_margin[0] (the screen bottom) to row_margin[1].
+ * Rows: the first row_split of them over the screen, in the camera's depression angle dc
+ * (row_cam: the top row's and the screen bottom's, for a camera row_h above the sea plane),
+ * so their spacing on the screen is the camera's whatever the projector: at u in [0, 1) of
+ * that share, dc = row_cam[0] + x(u), evenly spaced (x = row_a u) except towards the horizon,
+ * where row_h / tan dc, the distance, halves from row to row (x = dc0 (2^(u / delta) - 1),
+ * delta one row, up to row_ustar, C1 there; grid_row_tan): rows evenly in dc left the top
+ * row at dmax and the next one 10-15x nearer from a boat, and each triangle between them took
+ * its varyings mostly from the near vertex (perspective-correct interpolation), so the sun's
+ * glitter stepped by 45x per column there. The rest evenly in the projector's angle from
+ * row_margin[0] (the screen bottom) to row_margin[1].
  * Rays meet the
  * plane alt_ray below the projector, else end at dmax. The range bounds every sea-plane point
  * whose displaced image can reach the camera's frustum (coverage by construction, grid.c).
@@ -73,6 +79,7 @@ struct grid_projection {
     double alt, alt_ray, dmax, pitch;
     double col_ang[4], col_split[2];
     double row_margin[2], row_cam[2], row_h, row_split;
+    double row_inv_delta, row_ustar, row_a;   /* the horizon rows (above); row_ustar 0: none */
 };
 
 /* The piecewise-linear angle at parameter x in [0, 1] through a[0] at 0, a[1] at s[0], ...,

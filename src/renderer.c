@@ -120,12 +120,12 @@ static const struct shader_attrib ocean_attribs[A_COUNT] = {
 
 /* Vertex-texture-fetch grid (ocean.vert VTF_PATTERNS): its uniforms, per pattern. */
 enum vtf_uniform {
-    VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_ROWS, VU_MARGIN, VU_STEP, VU_SCALE, VU_BIAS,
+    VU_FWD, VU_RIGHT, VU_UP, VU_FRAME, VU_RANGE, VU_ROWS, VU_ROWS_HZ, VU_MARGIN, VU_STEP, VU_SCALE, VU_BIAS,
     VU_PATTERN, VU_A0, VU_B0, VU_A1, VU_B1, VU_A2, VU_B2, VU_A3, VU_B3, VU_DETILE_TEX,
     VU_DETILE_ATLAS, VU_DISP_CELL, VU_COUNT
 };
 static const char *const vtf_uniform_names[VU_COUNT] = {
-    "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_rows", "grid_margin",
+    "grid_fwd", "grid_right", "grid_up", "grid_frame", "grid_range", "grid_rows", "grid_rows_hz", "grid_margin",
     "grid_step", "disp_scale", "disp_bias", "disp_pattern", "disp_a0", "disp_b0", "disp_a1",
     "disp_b1", "disp_a2", "disp_b2", "disp_a3", "disp_b3", "detile_tex", "detile_atlas_v",
     "disp_cell"
@@ -722,6 +722,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
                 (float)p->col_ang[3]);
     glUniform4f(u[VU_ROWS], (float)p->row_cam[0], (float)p->row_cam[1], (float)p->row_split,
                 (float)p->row_h);
+    glUniform3f(u[VU_ROWS_HZ], (float)p->row_inv_delta, (float)p->row_ustar, (float)p->row_a);
     glUniform3f(u[VU_MARGIN], (float)p->row_margin[0], (float)p->row_margin[1], (float)-p->pitch);
     glUniform3f(u[VU_STEP], 1.0f / (float)(w - 1), 1.0f / (float)(h - 1), (float)p->dmax);
     glUniform4fv(u[VU_SCALE], SWELL_MAX_PATTERNS, &sc[0][0]);
