@@ -41,8 +41,9 @@ uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 uniform vec2 slope_var[4];          // per slot: the slope variance over its patch, xy
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
-uniform vec3 wc_mean[4];            // per slot: the foam memory's mean over its patch, its
-                                    // within-texel variance at the level, over the patch
+uniform vec4 wc_mean[4];            // per slot: the foam memory's mean over its patch, its
+                                    // within-texel variance at the level, over the patch; the
+                                    // share of the fetched one to trust (add_whitecap)
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
@@ -186,19 +187,24 @@ void add_slope(vec4 b, vec4 sc, vec4 m, vec2 t, float g, vec4 a0, vec4 a1, vec4 
 #define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))
 
 
-void add_whitecap(vec4 b, vec4 sc, vec3 mu, float g, vec4 a0, vec4 a1, vec4 a2)
+void add_whitecap(vec4 b, vec4 sc, vec4 mu, float g, vec4 a0, vec4 a1, vec4 a2)
 {
     // Dupuy eq. 7-8 per pattern, on the foam memory m_i of k_i; the variance is summed per
     // pattern (sum <m_i^2> - <m_i>^2), the same uncorrelated-pattern assumption as eq. 8
     // without its cross terms of the means. The taps blend m's deviation from its mean mu.x;
     // weighted by g as the slopes are (mu.y, mu.z: the level's mean within-texel variance,
-    // the patch's variance).
+    // the patch's variance). The fetched within-texel variance is <m^2> - <m>^2 of two 8-bit
+    // channels: on fine levels, where it is far below their steps, it is their rounding (and
+    // llvmpipe's 8-bit filtering), and through eq. 6's erf that noise drew a mesh of dots in
+    // the foam up close. So it enters shrunk towards the level's mean, by mu.w = S^2 / (S^2 +
+    // N^2) (renderer.c: S the level's mean, N the rounding's deviation): as fetched on the
+    // coarse levels, the level's mean where it is noise.
     vec4 k0 = b + sc * a0, k1 = b + sc * a1, k2 = b + sc * a2;
     g_mu += mu.x + g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
     float v = dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
                                         k2.y - k2.x * k2.x), vec3(0.0)));
     float h = min(g, 1.0);
-    g_kvar += h * v + (1.0 - h) * mu.y + (1.0 - h * h) * (mu.z - mu.y);
+    g_kvar += mu.y + h * mu.w * (v - mu.y) + (1.0 - h * h) * (mu.z - mu.y);
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
 #define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))

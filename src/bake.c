@@ -246,6 +246,26 @@ static int bake_pattern_fields(const struct seastate *s, const struct swell_patt
     return 0;
 }
 
+/* A frame's foam memory m (n x n, periodic) as the moments its whitecap table holds (Dupuy
+ * eq. 8): m, and the second moment m^2 + W of the continuous field over the texel, W the
+ * variance of its linear variation across the texel, (m_x^2 + m_y^2) / 12 in texel units
+ * (central differences on the tile). A texel is an area, not a point: with W = 0 at level 0
+ * eq. 6's coverage is a step of the bilinear m, whose contours follow the texel grid (square
+ * blocks of foam up close), and the 8-bit remainder <m^2> - <m>^2 there, noise of a
+ * quantisation step, drew a mesh of dots inside them. The mips average both moments, so
+ * every level holds the variance within its texels of this continuous field. */
+static void foam_moments(const float *m, int n, float *out)
+{
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++) {
+            size_t i = (size_t)y * n + x;
+            float gx = 0.5f * (m[(size_t)y * n + (x + 1) % n] - m[(size_t)y * n + (x + n - 1) % n]);
+            float gy = 0.5f * (m[(size_t)((y + 1) % n) * n + x] - m[(size_t)((y + n - 1) % n) * n + x]);
+            out[4 * i + 0] = m[i];
+            out[4 * i + 1] = m[i] * m[i] + (gx * gx + gy * gy) * (1.0f / 12.0f);
+        }
+}
+
 /* P(offset + sum_i X_i < x) for the breaking patterns' X_i = k_i (memory 0) or m_i (1). */
 static int pattern_sum(const struct seastate *s, struct pattern_work *w, int np, int memory,
                        struct whitecap_sum *out, struct swell_err *err)
@@ -346,7 +366,7 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
     out->mss_unresolved_y = (float)(beyond_y + deficit_y);
 
     int n = s.size_fs, F = s.frames, levels = ilog2(n) + 1;
-    size_t texels = (size_t)n * (size_t)n, count = texels * (size_t)F;
+    size_t texels = (size_t)n * (size_t)n;
     int foam_patterns = 0;   /* patterns are largest first: whitecaps on a leading run */
     for (int i = 0; i < s.patterns; i++) {
         out->pattern[i].period_s = pattern_period(&s, &out->pattern[i]);
@@ -366,11 +386,9 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
         var_h += out->pattern[i].var_h;
         if (!work[i].breaks)
             continue;
-        for (size_t j = 0; j < count; j++) {
-            float m = work[i].mem[j];
-            work[i].white[j * 4 + 0] = m;
-            work[i].white[j * 4 + 1] = m * m;   /* eq. 8's second moment, of m */
-        }
+        for (int f = 0; f < F; f++)
+            foam_moments(work[i].mem + texels * (size_t)f, n,
+                         work[i].white + 4 * texels * (size_t)f);
     }
     out->hs_m = (float)(4.0 * sqrt(var_h));
 

@@ -26,6 +26,7 @@
 #include "sky.h"
 #include "stream.h"
 #include "tonemap.h"
+#include "water.h"
 #include "detile.h"
 
 #define SKY_MAP_SIZE 256
@@ -211,6 +212,7 @@ struct renderer {
     struct fs_slot slot[SWELL_MAX_PATTERNS];
     float *verts;
     float exposure;
+    float water_albedo[3];            /* eq. 28's water body, L_sea = albedo E / pi (water.h) */
     uint64_t stream_bytes;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
     int run_lod;                      /* pattern fetches at one LOD per run (gpu.c) */
@@ -578,15 +580,15 @@ static uint8_t unorm8(float x)
 
 /* The light the sea reflects and refracts, radiances times the exposure (tone_map in
  * common.glsl takes them so): the sun's irradiance, eq. 28's water body L_sea and the
- * Lambertian 0.4 foam (Dupuy §2), both lit by sun and sky. */
+ * Lambertian 0.4 foam (Dupuy §2), both lit by sun and sky: E, the irradiance on the level
+ * sea, the sun's times sin(elevation) plus the sky's. */
 static void sea_light(const struct renderer *r, float sun[3], float sea[3], float foam[3])
 {
-    static const float sea_colour[3] = { 0.004f, 0.016f, 0.024f };   /* eq. 28's water body */
     float e = r->exposure;
     for (int c = 0; c < 3; c++) {
         float lit = r->sky.sun_irr[c] * fmaxf(r->sky.sun_dir[2], 0.0f) + r->sky.sky_irr[c];
         sun[c] = r->d.no_sun ? 0.0f : e * r->sky.sun_irr[c];
-        sea[c] = e * sea_colour[c] * lit / (float)M_PI;
+        sea[c] = e * r->water_albedo[c] * lit / (float)M_PI;
         foam[c] = e * 0.4f * lit / (float)M_PI;
     }
 }
@@ -941,7 +943,11 @@ static int update_sky_view(struct renderer *r, double alt_m, struct swell_err *e
     for (int k = 0; k < 2 * SKY_VIEW_N; k++)
         r->scratch[4 * k + 3] = 255;
     float e_sun = asinf(fminf(fmaxf(r->sky.sun_dir[2], -1.0f), 1.0f));
+    float o3[3];
     sky_transmittance(sky_view_air_mass(alt_m, e_sun), r->sky_view_sun);
+    sky_ozone_transmittance(e_sun, o3);
+    for (int c = 0; c < 3; c++)
+        r->sky_view_sun[c] *= o3[c];
     for (int c = 0; c < 3; c++)
         if (!(r->sky.sun_irr[c] > 0.0f))
             r->sky_view_sun[c] = 0.0f;   /* below the horizon (sky_bake) */
@@ -965,6 +971,7 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     if (!(r = calloc(1, sizeof(*r))))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory");
     r->d = *desc;
+    water_albedo(WATER_CHLOROPHYLL_OPEN, r->water_albedo);
     resolve(&r->d);
     uint64_t before = desc->gpu->bytes;
     r->gpu = desc->gpu;
@@ -1459,12 +1466,25 @@ static void apply_loop_gain(const struct fs_slot *sl, float fa, float fb, float 
     *cmax *= fmaxf(ga, gb);
 }
 
+/* How far ocean.frag add_whitecap trusts a fetched within-texel variance of the foam memory,
+ * <m^2> - <m>^2 from two RGBA8 channels, over the level's mean S: S^2 / (S^2 + N^2), N the
+ * deviation of its rounding, each channel's (uniform, step^2 / 12) taken twice (the texel's and
+ * an 8-bit filter's), the mean's through 2 <m> d<m>. */
+static float wc_trust(const struct fs_slot *sl, float level_mean)
+{
+    const float *sc = sl->wc->scale;
+    double km = sl->top_k[0], q = 1.0 / 255.0;
+    double n2 = 2.0 / 12.0 * q * q * (sc[1] * sc[1] + 4.0 * km * km * sc[0] * sc[0]);
+    double s2 = (double)level_mean * level_mean;
+    return s2 + n2 > 0.0 ? (float)(s2 / (s2 + n2)) : 0.0f;
+}
+
 static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix,
                           float lf_far, float lf_near)
 {
     const GLint *u = r->ou[VARIANT(k, kw)];
     float sl_lod[SWELL_MAX_PATTERNS][4] = { { 0 } }, wc_lod[SWELL_MAX_PATTERNS][4] = { { 0 } };
-    float smu[SWELL_MAX_PATTERNS][4] = { { 0 } }, wmu[SWELL_MAX_PATTERNS][3] = { { 0 } };
+    float smu[SWELL_MAX_PATTERNS][4] = { { 0 } }, wmu[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float svar[SWELL_MAX_PATTERNS][2] = { { 0 } }, cmax[SWELL_MAX_PATTERNS][2] = { { 0 } };
     float wt_v[SWELL_MAX_PATTERNS][4] = { { 0 } }, wfrac[SLOT_LEVELS][4] = { { 0 } };
     for (int s = 0; s < k && s < r->nfs; s++) {
@@ -1506,11 +1526,12 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         wmu[s][0] = sl->top_k[0];
         wmu[s][1] = within_at(sl->level_kvar, 1, wl, sl->top_level[1]);
         wmu[s][2] = sl->top_k[1];
+        wmu[s][3] = wc_trust(sl, wmu[s][1]);
     }
     glUniform4fv(u[OU_SLOT_LOD], SWELL_MAX_PATTERNS, &sl_lod[0][0]);
     glUniform4fv(u[OU_SLOPE_MEAN], SWELL_MAX_PATTERNS, &smu[0][0]);
     glUniform4fv(u[OU_WC_LOD], SWELL_MAX_PATTERNS, &wc_lod[0][0]);
-    glUniform3fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
+    glUniform4fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
     /* low quality's vertex stage: the weights' terms, T and its level, W / T per level (own

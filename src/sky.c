@@ -9,12 +9,26 @@ static const float tau_r[3] = { 0.0464f, 0.108f, 0.265f };
 #define TAU_M 0.0252f
 #define MIE_EXT 1.1f
 #define MIE_G 0.76f
+/* Ozone (sky.h): 300 DU (8.06e18 molecules / cm^2) times Chappuis-band cross-sections of about
+ * (1.22, 3.5, 0.16) e-21 cm^2 at 680/550/440 nm, in a thin shell 25 km up. */
+static const float tau_o3[3] = { 0.0098f, 0.0282f, 0.0013f };
+#define OZONE_ALT_M 25000.0f
 
 /* Kasten & Young 1989 relative air mass for an elevation (degrees above the horizon). */
 static float air_mass(float elev_deg)
 {
     float e = elev_deg < 0.0f ? 0.0f : elev_deg;
     return 1.0f / (sinf(e * (float)M_PI / 180.0f) + 0.50572f * powf(e + 6.07995f, -1.6364f));
+}
+
+void sky_ozone_transmittance(float elev_rad, float out[3])
+{
+    /* air mass of a thin shell at height h: 1 / sqrt(1 - (R cos e / (R + h))^2) */
+    float e = elev_rad > 0.0f ? elev_rad : 0.0f;
+    float c = cosf(e) * 6.371e6f / (6.371e6f + OZONE_ALT_M);
+    float m = 1.0f / sqrtf(1.0f - c * c);
+    for (int k = 0; k < 3; k++)
+        out[k] = expf(-tau_o3[k] * m);
 }
 
 static float sun_elev_deg(const struct sky *s)
@@ -28,12 +42,13 @@ static float sun_elev_deg(const struct sky *s)
 static void scatter_gains(const struct sky *s, float m_v, float ray[3], float mie[3])
 {
     float elev = sun_elev_deg(s), m_s = air_mass(elev);
-    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f);
+    float twilight = elev >= 0.0f ? 1.0f : fmaxf(0.0f, 1.0f + elev / 6.0f), o3[3];
+    sky_ozone_transmittance(elev * (float)M_PI / 180.0f, o3);
     for (int c = 0; c < 3; c++) {
         float tau = tau_r[c] + MIE_EXT * TAU_M;
         float a = tau * m_s, b = tau * m_v;
         float f = fabsf(b - a) > 1e-4f ? (expf(-a) - expf(-b)) / (b - a) : expf(-a);
-        float gain = twilight * m_v * f;
+        float gain = twilight * o3[c] * m_v * f;
         ray[c] = tau_r[c] * gain;
         mie[c] = TAU_M * gain;
     }
@@ -160,9 +175,11 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
     out->sun_dir[1] = cosf(e) * sinf(a);
     out->sun_dir[2] = sinf(e);
     {
-        float m_s = air_mass(elev_deg);
+        float m_s = air_mass(elev_deg), o3[3];
+        sky_ozone_transmittance(e, o3);
         for (int c = 0; c < 3; c++)
-            out->sun_irr[c] = elev_deg > -0.5f ? expf(-(tau_r[c] + MIE_EXT * TAU_M) * m_s) : 0.0f;
+            out->sun_irr[c] =
+                elev_deg > -0.5f ? o3[c] * expf(-(tau_r[c] + MIE_EXT * TAU_M) * m_s) : 0.0f;
     }
     lin = malloc(sizeof(float) * 3 * (size_t)size * size);
     out->data = malloc(sky_level_offset(out, levels));

@@ -9,6 +9,11 @@
  *     L = E0 (tau_R p_R(gamma) + tau_M p_M(gamma)) m_v (e^{-tau m_s} - e^{-tau m_v}) / (tau (m_v - m_s))
  * (the closed form of the single-scattering integral through the slab), E0 = 1 extraterrestrial
  * sun irradiance, so every radiance is relative to it. Multiple scattering is ignored.
+ * The sunlight reaches the air through the ozone layer (sky_ozone_transmittance: 300 DU, its
+ * Chappuis band absorbing green and red, optical depth (0.0098, 0.0282, 0.0013), in a thin
+ * shell 25 km up): what keeps the zenith blue at low sun, where the long path's Rayleigh
+ * extinction alone leaves the light that reaches it yellow and the zenith grey (at 3 degrees
+ * its green falls by 0.76, blue by 0.99). The view paths from below the layer skip it.
  */
 #ifndef SWELL_SKY_H
 #define SWELL_SKY_H
@@ -64,6 +69,9 @@ void sky_view_gains(const struct sky *s, double alt_m, int n, float *ray, float 
 /* Air mass of the column from a camera alt_m up along elevation elev_rad (as sky_view_gains);
  * the sun disc's transmittance is exp(-tau m). */
 float sky_view_air_mass(double alt_m, float elev_rad);
+/* The ozone layer's transmittance per channel for the sun at elevation elev_rad (clamped to
+ * 0): sky_radiance, the sea's sun irradiance and the sun disc take it. */
+void sky_ozone_transmittance(float elev_rad, float out[3]);
 /* exp(-tau_c m) per channel: the transmittance of air mass m (sky_view_air_mass). */
 void sky_transmittance(float m, float out[3]);
 

@@ -827,7 +827,8 @@ static void test_patches_lod(void **state)
  * 1.1-5.5 with it: renderer.c weight_terms scales a run's level to the contrast of the
  * footprint's fractional level, which per-pixel trilinear filtering lowers between levels, and
  * low at the surface, where Hu's pass shows the slopes' glitter unfiltered, differs most; high
- * takes the sky map per run too), and the mean luminance of every 8 rows within 8 levels
+ * takes the sky map per run too; 6.01 with the sky's ozone and the water body of water.h,
+ * held at 6.5), and the mean luminance of every 8 rows within 8 levels
  * (measured 0.3-3.0 in high; low 6.8 at the surface near the horizon: both qualities bind the
  * sky map per run at eq. 27's level for the run's variance, but low quality's per-pixel path
  * reads it at the implicit LOD, unfiltered, where high's adds eq. 27's bias). On
@@ -869,7 +870,7 @@ static void test_run_lod(void **state)
                 double bm = band_mean_max(fx.img, fx.img2, &band);
                 print_message("  the largest difference of 8 rows' mean luminance: %.2f at "
                               "row %d\n", bm, band);
-                assert_true(rmse < 6.0);
+                assert_true(rmse < 6.5);
                 assert_true(bm < 8.0);
             }
 }
@@ -1041,7 +1042,10 @@ static void test_resolved_drop(void **state)
  * distant glitter gone), except at the surface in a breaking sea: low takes eq. 6's coverage
  * from the patches' moments per vertex, which falls short of the foam high resolves from its
  * whitecap tables near the camera (the foam memory is not Gaussian): held at 30 % there,
- * measured 24 %, the foam gap issue 14 item 6 has to close. */
+ * measured 24 %, the foam gap issue 14 item 6 has to close. At 1 km in that sea 5.0 %, held at
+ * 7 %: high's within-texel foam variance no longer carries the 8-bit rounding's noise
+ * (ocean.frag add_whitecap), which had added coverage, so its foam is the tables' and low's
+ * per-vertex eq. 6 shows the same shortfall as at the surface, smaller. */
 static void test_quality_match(void **state)
 {
     struct camera cams[3];
@@ -1078,7 +1082,7 @@ static void test_quality_match(void **state)
                     at = y0;
                 }
             }
-            double bound = w == 1 && c == 0 ? 0.30 : 0.05;
+            double bound = w == 1 && c == 0 ? 0.30 : w == 1 && c == 1 ? 0.07 : 0.05;
             print_message("low vs high, %.0f m/s, %s: 8-row mean luminance within %.1f %% "
                           "(worst rows %d-%d; held %.0f %%)\n", (double)winds[w], names[c],
                           100.0 * worst, at, at + 7, 100.0 * bound);
