@@ -39,7 +39,7 @@ FRAME_BIN := $(FRAME_SRC:tests/frame/%.c=$(BUILD)/tests/%)
 SWELL := $(BUILD)/swell
 SWELL_BAKE := $(BUILD)/swell-bake
 
-.PHONY: all deps run test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden
+.PHONY: all deps run test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden test-devices
 
 all: $(SWELL_BAKE) $(if $(wildcard src/swell.c),$(SWELL),)
 
@@ -104,6 +104,14 @@ test-shaders:
 
 test-frame: $(FRAME_BIN) $(if $(wildcard src/swell.c),$(SWELL),)
 	@tools/run-tests.sh frame $(BUILD) $(FRAME_BIN)
+
+# The shaders through the real GPUs' compilers: Mesa's lima, vc4, v3d, panfrost, freedreno and
+# etnaviv with their noop drm-shims, built once from Debian's mesa source (tools/mesa-shim.sh;
+# cached outside the clone), then every GPU model, tier and quality (tools/devices.py):
+# build/devices/results.json and docs/devices.md. Fails while any program is refused, spills or
+# passes 90 % of a hard limit (issue 15). Not in `make test` yet: today's shaders fail it.
+test-devices: $(SWELL) $(SWELL_BAKE)
+	tools/devices.py --build $(BUILD)
 
 clean:
 	rm -rf build

@@ -27,6 +27,7 @@
 #include "stream.h"
 #include "tonemap.h"
 #include "water.h"
+#include "capture.h"
 #include "detile.h"
 
 #define SKY_MAP_SIZE 256
@@ -219,6 +220,14 @@ struct renderer {
     int draws;                        /* sea draws in the last frame */
     int draws_wc_const;               /* ...with whitecaps of a fetched slot as constants */
     int draws_resolved_drop;          /* ...dropping a slope slot by DROP_RESOLVED */
+    /* The start-up probe (probe_programs): which ocean variants the driver runs, and the one
+     * each variant's rows are drawn with (itself, or one fetching fewer patterns) */
+    int variant_ok[OCEAN_VARIANTS];
+    int variant_use[OCEAN_VARIANTS];
+    int force_variant;                /* >= 0: every row with this variant (the probe) */
+    int probing;                      /* 1: no sky, cleared to 0 (the probe) */
+    int probe_executes;               /* the device drew the probe's clear (not a noop shim) */
+    int refused;                      /* variants the probe found refused */
 };
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
@@ -956,6 +965,169 @@ static int update_sky_view(struct renderer *r, double alt_m, struct swell_err *e
                          "renderer: background sky upload", err);
 }
 
+
+/* What the drivers swell targets print when they cannot run a shader they compiled and linked
+ * (capture.h): etnaviv past its instruction or register limits, vc4 out of registers, lima's
+ * vertex processor past 512 instructions, and their compile failures. */
+static const char *const refusal_text[] = {
+    "not okay", "Failed to register allocate", "compile failed", "failed to compile",
+    "Failed to compile", "exceeds maximum", "exceeds limit", "fail schedule", "gpir: fail",
+    "ppir: fail",
+};
+
+static int refused_in(const char *text)
+{
+    for (size_t i = 0; i < sizeof refusal_text / sizeof refusal_text[0]; i++)
+        if (strstr(text, refusal_text[i]))
+            return 1;
+    return 0;
+}
+
+static int variant_exists(const struct renderer *r, int k, int kw)
+{
+    return k >= 0 && k <= r->nfs && kw >= 0 && kw <= (k < r->nwc ? k : r->nwc) &&
+           r->ocean[VARIANT(k, kw)].program != 0;
+}
+
+#define PROBE_SIZE 16
+
+/* Start-up probe (issue 15): every ocean variant draws a nadir view into a small target
+ * once, so the driver compiles it now (most compile on first draw), while its stderr is
+ * captured: a variant is refused where the driver says so (refusal_text) or, on a device
+ * that executes draws (the target's clear reads back; Mesa's noop drm-shims execute none),
+ * where it leaves the target empty. A refused variant's rows are drawn with the nearest one
+ * that runs and fetches fewer patterns or whitecaps (variant_use); if none runs, the
+ * renderer cannot draw the sea here (SWELL_E_SHADER: the caller tries low quality). With
+ * SWELL_SHADER_LABELS=1 each probe draw is labelled on stderr, so a driver's statistics
+ * (tools/devices.py) are told apart by program. The sky's two programs are drawn once too
+ * (towards the sun, so its disc is in view). */
+static int probe_programs(struct renderer *r, struct swell_err *err)
+{
+    GLint prev_fbo = 0;
+    GLuint fbo = 0, tex = 0;
+    static uint8_t px[4 * PROBE_SIZE * PROBE_SIZE];
+    const char *labels = getenv("SWELL_SHADER_LABELS");
+    int label = labels && labels[0] == '1';
+    for (int v = 0; v < OCEAN_VARIANTS; v++) {
+        r->variant_ok[v] = r->ocean[v].program != 0;
+        r->variant_use[v] = v;
+    }
+    r->force_variant = -1;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev_fbo);
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, PROBE_SIZE, PROBE_SIZE, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    int complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    if (complete) {
+        glViewport(0, 0, PROBE_SIZE, PROBE_SIZE);
+        glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+        r->probe_executes = px[0] == 255 && px[1] == 0 && px[2] == 255 && px[3] == 255;
+    }
+    struct camera cam;
+    camera_defaults(&cam);
+    cam.pos[2] = 20.0;
+    cam.pitch_deg = -89.0f;
+    r->probing = 1;
+    for (int k = 0; complete && k <= r->nfs; k++)
+        for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
+            int v = VARIANT(k, kw);
+            if (!r->ocean[v].program)
+                continue;
+            char text[2048];
+            struct capture cap;
+            struct swell_err ferr = { 0 };
+            if (label)
+                fprintf(stderr, "swell-program: probe ocean k=%d kw=%d %s\n", k, kw,
+                        render_quality_name(r->d.quality));
+            capture_begin(&cap);
+            r->force_variant = v;
+            int rc = renderer_frame(r, &cam, 0.0, PROBE_SIZE, PROBE_SIZE, &ferr);
+            glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
+            capture_end(&cap, text, sizeof text);
+            int covered = 1;
+            if (r->probe_executes && !rc) {
+                int n = 0;
+                glReadPixels(0, 0, PROBE_SIZE, PROBE_SIZE, GL_RGBA, GL_UNSIGNED_BYTE, px);
+                for (int i = 0; i < PROBE_SIZE * PROBE_SIZE; i++)
+                    n += px[4 * i + 3] > 0;
+                covered = n > PROBE_SIZE * PROBE_SIZE / 2;
+            }
+            r->variant_ok[v] = !rc && !refused_in(text) && covered &&
+                               !((r->d.probe_refuse >> (v & 31)) & 1u);
+            if (label)
+                fprintf(stderr, "swell-program: end %s\n", r->variant_ok[v] ? "ok" : "refused");
+            while (glGetError() != GL_NO_ERROR)
+                ;
+        }
+    /* the sky's programs too, towards the sun (their refusal leaves the sea drawn: said only) */
+    if (complete) {
+        char text[2048];
+        struct capture cap;
+        struct swell_err ferr = { 0 };
+        struct camera up;
+        camera_defaults(&up);
+        up.pos[2] = 20.0;
+        up.heading_deg = r->d.sun_azim_deg;
+        up.pitch_deg = r->d.sun_elev_deg;
+        if (label)
+            fprintf(stderr, "swell-program: probe sky\n");
+        capture_begin(&cap);
+        r->probing = 2;
+        int rc = renderer_frame(r, &up, 0.0, PROBE_SIZE, PROBE_SIZE, &ferr);
+        glFlush();
+        capture_end(&cap, text, sizeof text);
+        if (rc || refused_in(text))
+            fprintf(stderr, "swell: the driver refused the sky's programs: no sky will be "
+                    "drawn behind the sea\n");
+        if (label)
+            fprintf(stderr, "swell-program: end %s\n", rc || refused_in(text) ? "refused" : "ok");
+        while (glGetError() != GL_NO_ERROR)
+            ;
+    }
+    r->probing = 0;
+    r->force_variant = -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev_fbo);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    /* each variant's stand-in: the most patterns, then whitecaps, among those that run */
+    char list[256] = "";
+    size_t ln = 0;
+    r->refused = 0;
+    for (int k = 0; k <= r->nfs; k++)
+        for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
+            int v = VARIANT(k, kw), use = -1;
+            if (!r->ocean[v].program)
+                continue;
+            r->refused += !r->variant_ok[v];
+            for (int k2 = k; k2 >= 0 && use < 0; k2--)
+                for (int kw2 = kw < k2 ? kw : k2; kw2 >= 0 && use < 0; kw2--)
+                    if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
+                        use = VARIANT(k2, kw2);
+            r->variant_use[v] = use;
+            if (use < 0)
+                return swell_fail(err, SWELL_E_SHADER, "renderer: the driver (%s) runs no %s "
+                                  "quality ocean program, not even one fetching no pattern "
+                                  "(its messages are above)", (const char *)glGetString(GL_RENDERER),
+                                  render_quality_name(r->d.quality));
+            if (use != v && ln < sizeof list)
+                ln += (size_t)snprintf(list + ln, sizeof list - ln, " %d/%d->%d/%d", k, kw,
+                                       use / (SWELL_MAX_PATTERNS + 1),
+                                       use % (SWELL_MAX_PATTERNS + 1));
+        }
+    if (r->refused)
+        fprintf(stderr, "swell: the driver (%s) refused %d ocean program(s); their rows are "
+                "drawn fetching fewer patterns/whitecap tables:%s\n",
+                (const char *)glGetString(GL_RENDERER), r->refused, list);
+    return gpu_check("renderer: start-up probe", err);
+}
+
 int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
 {
     struct renderer *r;
@@ -986,7 +1158,8 @@ int renderer_create(const struct renderer_desc *desc, struct renderer **out, str
     gd.cpu_patterns = r->cpu_mask;
     gd.no_detile = !renderer_detile(r);
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
-        (rc = build_programs(r, err)) || (rc = create_buffers(r, err)))
+        (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
+        (rc = probe_programs(r, err)))
         goto fail;
     r->gpu_bytes = r->gpu->bytes - before;
     *out = r;
@@ -1563,7 +1736,10 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
         float d2 = 0.0f;
         if (row < rows) {
             grid_row_span(r->grid, row, &first, &count, &d2);
-            if (r->d.fetch_all) {
+            if (r->force_variant >= 0) {
+                k = r->force_variant / (SWELL_MAX_PATTERNS + 1);
+                kw = r->force_variant % (SWELL_MAX_PATTERNS + 1);
+            } else if (r->d.fetch_all) {
                 k = r->nfs;
                 kw = high ? r->nwc : 0;
             } else {
@@ -1580,6 +1756,12 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             run_d2 = d2;
             run_early |= early;
             continue;
+        }
+        if (run_count > 0 && r->force_variant < 0) {
+            /* a variant the driver refused: its rows with the one the probe chose */
+            int use = r->variant_use[VARIANT(run_k, run_kw)];
+            run_k = use / (SWELL_MAX_PATTERNS + 1);
+            run_kw = use % (SWELL_MAX_PATTERNS + 1);
         }
         if (run_count > 0) {
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
@@ -1641,15 +1823,18 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
-    if (r->d.debug_uncovered)
+    if (r->probing)
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);   /* the probe counts what the sea writes */
+    else if (r->d.debug_uncovered)
         glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug */
     else
         glClearColor(0.02f, 0.05f, 0.07f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
     int rc;
-    if (!r->d.no_sky && (rc = draw_sky(r, cam, world_to_clip, width, height, err)))
+    if (!r->d.no_sky && r->probing != 1 &&
+        (rc = draw_sky(r, cam, world_to_clip, width, height, err)))
         return rc;
-    if (nidx > 0) {
+    if (nidx > 0 && r->probing != 2) {
         /* Rows are ordered far to near, so without a depth buffer the painter's order holds. */
         if (depth_bits > 0) {
             glEnable(GL_DEPTH_TEST);
@@ -1697,6 +1882,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     out->vtf = r->vtf;
     out->detile = renderer_detile(r);
     out->camera_raise_m = r->camera_raise_m;
+    out->refused = r->refused;
 }
 
 void renderer_describe(const struct renderer *r, char *buf, size_t size)

@@ -48,6 +48,9 @@ struct renderer_desc {
                                          * foam and the water body stay sunlit), so the
                                          * difference from a frame with it is the glitter
                                          * (tests: its width against Cox & Munk) */
+    unsigned probe_refuse;              /* tests: bit VARIANT(k, kw) = k * 5 + kw set: the
+                                         * start-up probe takes that ocean variant as refused
+                                         * by the driver (renderer.c probe_programs) */
     int detile;                         /* enum detile_mode (swell --detile); default AUTO.
                                          * The CPU query (sea.h) takes renderer_detile's flag */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
@@ -68,6 +71,8 @@ struct renderer_stats {
     int run_lod;                        /* pattern tables fetched at one LOD per run */
     int vtf;                            /* grid built and displaced in the vertex shader */
     int detile;                         /* 1: the lattice of random offsets is on */
+    int refused;                        /* ocean variants the start-up probe found refused
+                                         * (their rows drawn with fewer fetches) */
     double camera_raise_m;              /* the last frame drew the camera this much higher, m:
                                          * it was less than CAMERA_CLEARANCE_M above the local
                                          * surface (renderer_frame) */

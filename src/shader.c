@@ -481,6 +481,13 @@ int shader_program_build(const struct shader_desc *d, struct shader_program *out
         d->attrib_count < 0 || (d->attrib_count > 0 && !d->attribs))
         return swell_fail(err, SWELL_E_ARG, "shader: uniform/attribute tables missing for %s + %s",
                           d->vs_file ? d->vs_file : "?", d->fs_file ? d->fs_file : "?");
+    /* SWELL_SHADER_LABELS: each build between two labelled lines on stderr, so what a driver
+     * prints while compiling and linking it (its statistics, tools/devices.py) can be told
+     * apart by program */
+    const char *labels = getenv("SWELL_SHADER_LABELS");
+    if (labels && labels[0] == '1')
+        fprintf(stderr, "swell-program: begin %s + %s [%s] tier %s\n", d->vs_file, d->fs_file,
+                d->defines ? d->defines : "", gpu_tier_name(d->caps->tier));
     int rc = compile_stage(d, GL_VERTEX_SHADER, &vs, err);
     if (rc)
         goto fail;
@@ -520,6 +527,8 @@ int shader_program_build(const struct shader_desc *d, struct shader_program *out
         goto fail;
     }
     out->program = prog;
+    if (labels && labels[0] == '1')
+        fprintf(stderr, "swell-program: end\n");
     return SWELL_OK;
 
 fail:

@@ -584,7 +584,19 @@ int main(int argc, char **argv)
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
         .detile = o.detile,
     };
-    if (renderer_create(&rd, &r, &err))
+    rc = renderer_create(&rd, &r, &err);
+    if (rc == SWELL_E_SHADER) {
+        /* the driver runs no ocean program of this quality (renderer.c probe_programs): the
+         * same sea in the other rather than none (low's vertex shader carries more of the
+         * shading, so either may be the one that fits) */
+        int other = rd.quality == QUALITY_HIGH ? QUALITY_LOW : QUALITY_HIGH;
+        fprintf(stderr, "swell: %s\nswell: %s quality does not run on this GPU; trying "
+                "--quality %s\n", err.msg, render_quality_name(rd.quality),
+                render_quality_name(other));
+        rd.quality = o.quality = other;
+        rc = renderer_create(&rd, &r, &err);
+    }
+    if (rc)
         goto fail_gpu;
     print_start(&o, &ph, &gpu, &tables, r);
     if (o.bench ? run_bench(&o, &ph, &gpu, r, &err)

@@ -143,6 +143,8 @@ static int g_detile_mode;    /* ...unless this is set: enum detile_mode + 1 */
 static int g_detile_used;    /* renderer_stats.detile of the last render */
 static float g_bias_max;     /* when > 0: gpu_caps.max_lod_bias, as a device with that limit */
 static int g_no_sun;         /* renderer_desc.no_sun */
+static unsigned g_refuse;    /* renderer_desc.probe_refuse */
+static int g_refused;        /* renderer_stats.refused of the last render */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
                    const struct camera *cam, double t, uint8_t *rgba, double *ms)
@@ -170,6 +172,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.debug_uncovered = 1;
     d.no_sky = g_no_sky;
     d.no_sun = g_no_sun;
+    d.probe_refuse = g_refuse;
     d.detile = g_detile_mode ? g_detile_mode - 1 : g_no_detile ? DETILE_MODE_OFF : DETILE_MODE_ON;
     rc = renderer_create(&d, &r, &err);
     if (rc)
@@ -178,6 +181,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     renderer_get_stats(r, &st);
     g_vtf_used = st.vtf;
     g_detile_used = st.detile;
+    g_refused = st.refused;
     if (g_move_sun[0] > 0.0f && (rc = renderer_set_sun(r, g_move_sun[0], g_move_sun[1], &err)))
         fail_msg("renderer_set_sun: %s", err.msg);
     assert_int_equal(fx.ph.be->begin_frame(fx.ph.p, &err), 0);
@@ -324,6 +328,7 @@ static int reset_fixture(void **state)
     g_move_sun[0] = g_move_sun[1] = 0.0f;
     g_cpu_geometry = g_fetch_all = g_pixel_lod = g_keep_resolved = g_no_sky = g_no_detile = g_detile_mode = 0;
     g_no_sun = 0;
+    g_refuse = 0;
     g_bias_max = 0.0f;
     return 0;
 }
@@ -1338,6 +1343,51 @@ static void test_glitter_width(void **state)
     assert_true(worst < 0.10);
 }
 
+/* A driver that refuses ocean variants (issue 15 item 2; etnaviv past its limits and vc4 out of
+ * registers say so only on stderr, renderer.c probe_programs): with every variant fetching a
+ * pattern refused, each tier and quality still covers every pixel with sea, its rows drawn
+ * with the variant fetching none, and the frame differs from the full one (the detail is
+ * gone, so the fallback is really drawn); with that one refused too, the renderer fails with
+ * SWELL_E_SHADER instead of drawing sky alone. */
+static void test_refused_fallback(void **state)
+{
+    struct camera c;
+    (void)state;
+    camera_defaults(&c);
+    c.pos[2] = 30.0;
+    c.pitch_deg = -20.0f;
+    static const int tiers[] = { TIER_GLES2_MIN, TIER_GLES3 };
+    for (int t = 0; t < 2; t++)
+        for (int q = 0; q < QUALITY_COUNT; q++) {
+            g_refuse = 0;
+            render(tiers[t], q, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img2, NULL);
+            assert_int_equal(g_refused, 0);
+            g_refuse = ~1u;   /* all but VARIANT(0, 0) */
+            render(tiers[t], q, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img, NULL);
+            check_defined(fx.img, "every variant fetching a pattern refused");
+            double d = rmse_rgb(fx.img, fx.img2);
+            print_message("%s %s: %d variants refused, the frame without their detail RMSE "
+                          "%.2f from the full one\n", gpu_tier_name(tiers[t]),
+                          render_quality_name(q), g_refused, d);
+            assert_true(g_refused > 0);
+            assert_true(d > 1.0);
+            g_refuse = 0;
+        }
+    struct gpu gpu;
+    struct renderer *r = NULL;
+    struct swell_err err = { 0 };
+    struct renderer_desc d = { 0 };
+    assert_int_equal(gpu_init(&gpu, TIER_GLES2_MIN, 0, &err), 0);
+    d.tables = &fx.tables;
+    d.gpu = &gpu;
+    d.probe_refuse = ~0u;
+    assert_int_equal(renderer_create(&d, &r, &err), SWELL_E_SHADER);
+    assert_null(r);
+    print_message("every variant refused: %s\n", err.msg);
+    assert_int_equal(gpu.bytes, 0);
+    gpu_shutdown(&gpu);
+}
+
 int main(void)
 {
     struct platform_desc pd = { 0 };
@@ -1363,6 +1413,7 @@ int main(void)
         cmocka_unit_test_teardown(test_defined_pixels, reset_fixture),
         cmocka_unit_test_teardown(test_quality_match, reset_fixture),
         cmocka_unit_test_teardown(test_glitter_width, reset_fixture),
+        cmocka_unit_test_teardown(test_refused_fallback, reset_fixture),
         cmocka_unit_test_teardown(test_baked_tables, reset_fixture),
         cmocka_unit_test_teardown(test_horizon, reset_fixture),
         cmocka_unit_test_teardown(test_horizon_sphere, reset_fixture),
