@@ -53,7 +53,8 @@ MODELS = [
 STAGES = {
     "MESA_SHADER_VERTEX": "vertex", "VERT": "vertex", "MESA_SHADER_POSITION": "vertex",
     "MESA_SHADER_FRAGMENT": "fragment", "FRAG": "fragment",
-    "MESA_SHADER_VERTEX_BIN": "binning", "BVERT": "binning", "MESA_SHADER_VARYING": "binning",
+    "MESA_SHADER_VERTEX_BIN": "binning", "BVERT": "binning",
+    "MESA_SHADER_VARYING": "varying",   # Bifrost splits the vertex stage: position, varyings
 }
 STATS = re.compile(r"^Mesa debug output: (\S+) shader: (.*)$")
 PROBE = re.compile(r"^swell-program: probe (.*)$")
@@ -145,7 +146,7 @@ def parse_log(text, model):
         ok = status.get(name)
         for stage in sorted(set(st) | {"vertex", "fragment"}):
             f = st.get(stage)
-            if stage == "binning" and f is None:
+            if stage in ("binning", "varying") and f is None:
                 continue
             records.append(dict(gpu=gpu, model=model["name"], tier=tiers.get(name), program=name,
                                 stage=stage, probed=ok is not None, compiled=bool(ok),
@@ -264,15 +265,39 @@ def write_doc(path, runs, records):
     for r in runs:
         lines.append("| %s | %s | %s | %s | %s | %d |" % (r["model"], r["tier_asked"], r["tier"],
                                                          r["quality"], r["exit"], r["programs"]))
-    lines += ["", "## Programs", "",
-              "| GPU | tier | quality | program | stage | compiled | instructions | limit | spills "
-              "| threads | problems |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines += ["", "## Ocean programs per GPU, tier and quality", "",
+              "Over the variants (each fetching 0-4 patterns and 0-4 whitecap tables): how many "
+              "the driver runs, the largest vertex and fragment shader (instructions as its "
+              "compiler counts them; etnaviv's code size / 4), the hard limit where one is known, "
+              "the variants that spill, the fewest threads reported. Every program's record is in "
+              "build/devices/results.json.", "",
+              "| GPU | tier | quality | run / refused | vertex max | fragment max | limit | spilling "
+              "| threads min |", "|---|---|---|---|---|---|---|---|---|"]
+    groups = {}
     for r in records:
-        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["model"], r["tier"], r["quality_asked"], r["program"], r["stage"],
-            "yes" if r["compiled"] else "**no**", r["instructions"] if r["instructions"] is not None else "-",
-            r["limit"] or "-", r["spills"] if r["spills"] is not None else "-",
-            r["threads"] if r["threads"] is not None else "-", "; ".join(r["problems"]) or ""))
+        if not r["program"].startswith("ocean"):
+            continue
+        key = (r["model"], r["tier"], r["program"].split()[-1])
+        g = groups.setdefault(key, dict(run=set(), refused=set(), v=0, f=0, spill=set(),
+                                        thr=None, limit=set()))
+        (g["run"] if r["compiled"] else g["refused"]).add(r["program"])
+        if r["instructions"]:
+            if r["stage"] == "vertex":
+                g["v"] = max(g["v"], r["instructions"])
+            elif r["stage"] == "fragment":
+                g["f"] = max(g["f"], r["instructions"])
+        if r["spills"]:
+            g["spill"].add(r["program"])
+        if r["threads"]:
+            g["thr"] = r["threads"] if g["thr"] is None else min(g["thr"], r["threads"])
+        if r["limit"]:
+            g["limit"].add("%s %d" % (r["stage"], r["limit"]))
+    for key in sorted(groups, key=lambda k: (k[0], str(k[1]), k[2])):
+        g = groups[key]
+        lines.append("| %s | %s | %s | %d / %d | %s | %s | %s | %d | %s |" % (
+            key[0], key[1], key[2], len(g["run"]), len(g["refused"]), g["v"] or "-", g["f"] or "-",
+            ", ".join(sorted(g["limit"])) or "-", len(g["spill"]),
+            g["thr"] if g["thr"] is not None else "-"))
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
 
