@@ -1093,6 +1093,7 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
     }
     r->probing = 0;
     r->force_variant = -1;
+    r->sky_view_alt = NAN;   /* the first frame builds the background for its own camera */
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev_fbo);
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &tex);
