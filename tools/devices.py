@@ -233,8 +233,11 @@ def run(args):
                                                                 r["program"], r["stage"],
                                                                 "; ".join(pr)))
                 all_records += recs
+                m = re.findall(r"trying --quality (\S+)", text)
+                drew = "none" if rc != 0 else (m[-1] if m else quality)
                 runs.append(dict(model=model["name"], gpu=gpu, tier_asked=tier, tier=picked,
-                                 quality=quality, exit=rc, programs=len({r["program"] for r in recs})))
+                                 quality=quality, drew=drew, exit=rc,
+                                 programs=len({r["program"] for r in recs})))
                 if rc != 0:
                     failures.append("%s %s %s: swell exited %s (log %s.log)" %
                                     (model["name"], tier, quality, rc, tag))
@@ -260,11 +263,12 @@ def write_doc(path, runs, records):
              "the driver said it cannot (swell then draws those rows with a variant fetching "
              "fewer patterns, or falls back to the other quality). Frame rates are not "
              "estimated yet.", ""]
-    lines += ["## Runs", "", "| GPU | asked | tier | quality | exit | programs |",
-              "|---|---|---|---|---|---|"]
+    lines += ["## Runs", "", "| GPU | tier asked | tier | quality asked | drawn in | exit | programs |",
+              "|---|---|---|---|---|---|---|"]
     for r in runs:
-        lines.append("| %s | %s | %s | %s | %s | %d |" % (r["model"], r["tier_asked"], r["tier"],
-                                                         r["quality"], r["exit"], r["programs"]))
+        lines.append("| %s | %s | %s | %s | %s | %s | %d |" % (
+            r["model"], r["tier_asked"], r["tier"], r["quality"], r["drew"], r["exit"],
+            r["programs"]))
     lines += ["", "## Ocean programs per GPU, tier and quality", "",
               "Over the variants (each fetching 0-4 patterns and 0-4 whitecap tables): how many "
               "the driver runs, the largest vertex and fragment shader (instructions as its "
