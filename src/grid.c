@@ -1217,6 +1217,7 @@ static void horizon_rows(struct grid_projection *p, int h)
     p->row_inv_delta = 1.0 / delta;
     p->row_ustar = us;
     p->row_a = a;
+    p->row_xs = dc0 * (exp2(us / delta) - 1.0);
 }
 
 /* The projected grid's frame for a camera (grid.h); 0 when no sea is in view.
@@ -1339,9 +1340,8 @@ double grid_row_tan(const struct grid_projection *p, double v)
     double theta;
     if (v < p->row_split) {
         double u = v / p->row_split, dc0 = p->row_cam[0], us = p->row_ustar;
-        double xs = dc0 * (exp2(us * p->row_inv_delta) - 1.0);
         double dc = dc0 + (u < us ? dc0 * (exp2(u * p->row_inv_delta) - 1.0)
-                                  : xs + p->row_a * (u - us));
+                                  : p->row_xs + p->row_a * (u - us));
         theta = -p->pitch - atan2(p->alt_ray * sin(dc), p->row_h * cos(dc));
     } else {
         theta = p->row_margin[0] + (p->row_margin[1] - p->row_margin[0]) * (v - p->row_split) /

@@ -80,6 +80,7 @@ struct grid_projection {
     double col_ang[4], col_split[2];
     double row_margin[2], row_cam[2], row_h, row_split;
     double row_inv_delta, row_ustar, row_a;   /* the horizon rows (above); row_ustar 0: none */
+    double row_xs;                            /* x(row_ustar) = dc0 (2^(u* / delta) - 1) */
 };
 
 /* The piecewise-linear angle at parameter x in [0, 1] through a[0] at 0, a[1] at s[0], ...,

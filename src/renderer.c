@@ -113,6 +113,8 @@ static const char *const sky_uniform_names[SU_COUNT] = {
 /* Ocean program variants: k slots' slopes and the first kw <= k of their whitecaps fetched. */
 #define OCEAN_VARIANTS ((SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1))
 #define VARIANT(k, kw) ((k) * (SWELL_MAX_PATTERNS + 1) + (kw))
+#define VARIANT_K(v) ((v) / (SWELL_MAX_PATTERNS + 1))
+#define VARIANT_KW(v) ((v) % (SWELL_MAX_PATTERNS + 1))
 
 enum { A_POS = 0, A_REST, A_GEO_SLOPE, A_GEO_K, A_GRID, A_COUNT };
 static const struct shader_attrib ocean_attribs[A_COUNT] = {
@@ -991,6 +993,25 @@ static int variant_exists(const struct renderer *r, int k, int kw)
 
 #define PROBE_SIZE 16
 
+/* One probe frame of cam into the bound 16x16 target, its stderr captured into text (and
+ * passed on), labelled "swell-program: probe NAME" first unless name is NULL; GL errors it
+ * left are cleared. Returns renderer_frame's code. */
+static int probe_draw(struct renderer *r, const struct camera *cam, const char *name,
+                      char *text, size_t size)
+{
+    struct capture cap;
+    struct swell_err ferr = { 0 };
+    if (name)
+        fprintf(stderr, "swell-program: probe %s\n", name);
+    capture_begin(&cap);
+    int rc = renderer_frame(r, cam, 0.0, PROBE_SIZE, PROBE_SIZE, &ferr);
+    glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
+    capture_end(&cap, text, size);
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    return rc;
+}
+
 /* Start-up probe (issue 15): every ocean variant draws a nadir view into a small target
  * once, so the driver compiles it now (most compile on first draw), while its stderr is
  * captured: a variant is refused where the driver says so (refusal_text) or, on a device
@@ -1040,17 +1061,11 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
             int v = VARIANT(k, kw);
             if (!r->ocean[v].program)
                 continue;
-            char text[2048];
-            struct capture cap;
-            struct swell_err ferr = { 0 };
-            if (label)
-                fprintf(stderr, "swell-program: probe ocean k=%d kw=%d %s\n", k, kw,
-                        render_quality_name(r->d.quality));
-            capture_begin(&cap);
+            char text[2048], name[64];
+            snprintf(name, sizeof name, "ocean k=%d kw=%d %s", k, kw,
+                     render_quality_name(r->d.quality));
             r->force_variant = v;
-            int rc = renderer_frame(r, &cam, 0.0, PROBE_SIZE, PROBE_SIZE, &ferr);
-            glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
-            capture_end(&cap, text, sizeof text);
+            int rc = probe_draw(r, &cam, label ? name : NULL, text, sizeof text);
             int covered = 1;
             if (r->probe_executes && !rc) {
                 int n = 0;
@@ -1063,33 +1078,23 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                                !((r->d.probe_refuse >> (v & 31)) & 1u);
             if (label)
                 fprintf(stderr, "swell-program: end %s\n", r->variant_ok[v] ? "ok" : "refused");
-            while (glGetError() != GL_NO_ERROR)
-                ;
         }
     /* the sky's programs too, towards the sun (their refusal leaves the sea drawn: said only) */
     if (complete) {
         char text[2048];
-        struct capture cap;
-        struct swell_err ferr = { 0 };
         struct camera up;
         camera_defaults(&up);
         up.pos[2] = 20.0;
         up.heading_deg = r->d.sun_azim_deg;
         up.pitch_deg = r->d.sun_elev_deg;
-        if (label)
-            fprintf(stderr, "swell-program: probe sky\n");
-        capture_begin(&cap);
         r->probing = 2;
-        int rc = renderer_frame(r, &up, 0.0, PROBE_SIZE, PROBE_SIZE, &ferr);
-        glFlush();
-        capture_end(&cap, text, sizeof text);
-        if (rc || refused_in(text))
+        int refused = probe_draw(r, &up, label ? "sky" : NULL, text, sizeof text) ||
+                      refused_in(text);
+        if (refused)
             fprintf(stderr, "swell: the driver refused the sky's programs: no sky will be "
                     "drawn behind the sea\n");
         if (label)
-            fprintf(stderr, "swell-program: end %s\n", rc || refused_in(text) ? "refused" : "ok");
-        while (glGetError() != GL_NO_ERROR)
-            ;
+            fprintf(stderr, "swell-program: end %s\n", refused ? "refused" : "ok");
     }
     r->probing = 0;
     r->force_variant = -1;
@@ -1119,8 +1124,7 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                                   render_quality_name(r->d.quality));
             if (use != v && ln < sizeof list)
                 ln += (size_t)snprintf(list + ln, sizeof list - ln, " %d/%d->%d/%d", k, kw,
-                                       use / (SWELL_MAX_PATTERNS + 1),
-                                       use % (SWELL_MAX_PATTERNS + 1));
+                                       VARIANT_K(use), VARIANT_KW(use));
         }
     if (r->refused)
         fprintf(stderr, "swell: the driver (%s) refused %d ocean program(s); their rows are "
@@ -1738,8 +1742,8 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
         if (row < rows) {
             grid_row_span(r->grid, row, &first, &count, &d2);
             if (r->force_variant >= 0) {
-                k = r->force_variant / (SWELL_MAX_PATTERNS + 1);
-                kw = r->force_variant % (SWELL_MAX_PATTERNS + 1);
+                k = VARIANT_K(r->force_variant);
+                kw = VARIANT_KW(r->force_variant);
             } else if (r->d.fetch_all) {
                 k = r->nfs;
                 kw = high ? r->nwc : 0;
@@ -1758,13 +1762,13 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             run_early |= early;
             continue;
         }
-        if (run_count > 0 && r->force_variant < 0) {
-            /* a variant the driver refused: its rows with the one the probe chose */
-            int use = r->variant_use[VARIANT(run_k, run_kw)];
-            run_k = use / (SWELL_MAX_PATTERNS + 1);
-            run_kw = use % (SWELL_MAX_PATTERNS + 1);
-        }
         if (run_count > 0) {
+            if (r->force_variant < 0) {
+                /* a variant the driver refused: its rows with the one the probe chose */
+                int use = r->variant_use[VARIANT(run_k, run_kw)];
+                run_k = VARIANT_K(use);
+                run_kw = VARIANT_KW(use);
+            }
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
             set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
             set_run_lods(r, run_k, run_kw, run_key, sqrtf(run_d2_far * run_d2), alt);
