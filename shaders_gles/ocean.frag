@@ -73,21 +73,28 @@ varying vec4 v_base;                // 0.5 / the slope variance xy, eq. 26's k, 
 varying vec4 v_lin;                 // ocean.vert: Fresnel-texture uv, sky-map uv at s0...
 varying vec4 v_lin_dx;              // ...and their derivatives in s.x
 varying vec4 v_lin_dy;              // ...and in s.y
+// the slots' uv in pairs (vec4: one varying row, one store on Mali-400's vertex unit)
+#if FS_PATTERNS > 1
+varying vec4 v_uv01;
+#elif FS_PATTERNS > 0
+varying vec2 v_uv01;
+#endif
+#if FS_PATTERNS > 3
+varying vec4 v_uv23;
+#elif FS_PATTERNS > 2
+varying vec2 v_uv23;
+#endif
 #if FS_PATTERNS > 0
 uniform sampler2D slope_tex0;
-varying vec2 v_uv0;
 #endif
 #if FS_PATTERNS > 1
 uniform sampler2D slope_tex1;
-varying vec2 v_uv1;
 #endif
 #if FS_PATTERNS > 2
 uniform sampler2D slope_tex2;
-varying vec2 v_uv2;
 #endif
 #if FS_PATTERNS > 3
 uniform sampler2D slope_tex3;
-varying vec2 v_uv3;
 #endif
 #ifdef QUALITY_HIGH
 #if FS_WHITECAPS > 0
@@ -228,27 +235,27 @@ void main()
 #endif
     // each slot's whitecaps with its slopes: they share its taps
 #if FS_PATTERNS > 0
-    SLOPE(0, slope_tex0, v_uv0);
+    SLOPE(0, slope_tex0, v_uv01.xy);
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 0
-    WHITECAP(0, wc_tex0, v_uv0);
+    WHITECAP(0, wc_tex0, v_uv01.xy);
 #endif
 #endif
 #if FS_PATTERNS > 1
-    SLOPE(1, slope_tex1, v_uv1);
+    SLOPE(1, slope_tex1, v_uv01.zw);
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 1
-    WHITECAP(1, wc_tex1, v_uv1);
+    WHITECAP(1, wc_tex1, v_uv01.zw);
 #endif
 #endif
 #if FS_PATTERNS > 2
-    SLOPE(2, slope_tex2, v_uv2);
+    SLOPE(2, slope_tex2, v_uv23.xy);
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 2
-    WHITECAP(2, wc_tex2, v_uv2);
+    WHITECAP(2, wc_tex2, v_uv23.xy);
 #endif
 #endif
 #if FS_PATTERNS > 3
-    SLOPE(3, slope_tex3, v_uv3);
+    SLOPE(3, slope_tex3, v_uv23.zw);
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 3
-    WHITECAP(3, wc_tex3, v_uv3);
+    WHITECAP(3, wc_tex3, v_uv23.zw);
 #endif
 #endif
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.

@@ -151,25 +151,22 @@ varying vec4 v_extra;       // coverage (no whitecap fetched), sky LOD offset, t
                             // transmittance, lod_foot (so high quality's varyings fit GLES2's
                             // 8 rows)
 #else
-uniform vec4 slot_lod_v[4];             // per fetched slot: its weight's terms, the slope's
-uniform vec2 lod_cmax_v[4];             // largest contrast factor (ocean.frag slot_weight)
-uniform vec4 slope_wt_v[4];             // ...its patch's slope variance T, xy; its level at
-                                        // footprint f: a f + b (a, b)
-uniform vec4 slot_wfrac_v[16];          // per mip level: each slot's W / T
+uniform vec4 var_knot_v[4];             // the fetched slots' pixel slope variance at 8
+uniform vec2 var_knot_frame_v;          // footprints (x: 0-3, 4-7; y), the first's footprint,
+                                        // knots per unit (fetched_var)
 uniform vec3 foam_radiance;             // Lambertian 0.4 foam lit by sun and sky (x exposure)
 varying vec4 v_base;        // 0.5 / the slope variance, xy; eq. 26's k; lod_foot
 #endif
-#if FS_PATTERNS > 0
-varying vec2 v_uv0;
-#endif
+// the slots' uv in pairs (vec4: one varying row, one store on Mali-400's vertex unit)
 #if FS_PATTERNS > 1
-varying vec2 v_uv1;
-#endif
-#if FS_PATTERNS > 2
-varying vec2 v_uv2;
+varying vec4 v_uv01;
+#elif FS_PATTERNS > 0
+varying vec2 v_uv01;
 #endif
 #if FS_PATTERNS > 3
-varying vec2 v_uv3;
+varying vec4 v_uv23;
+#elif FS_PATTERNS > 2
+varying vec2 v_uv23;
 #endif
 
 // The two lookups for view v and sea slope s: Hu §5.1's Fresnel texture at the view vector
@@ -231,25 +228,26 @@ float lod_foot(vec2 p)
 }
 
 #ifndef QUALITY_HIGH
-// Low quality takes the pixel's slope variance per vertex: each fetched slot's, with h its
-// weight (ocean.frag slot_weight, at the vertex's footprint f) up to 1, as high quality's
-// g v + (1 - g) W + (1 - g^2) (T - W) (ocean.frag add_slope) with the fetched within-texel
-// variance v at its mean W over the level read there (log-linear between levels):
-// W + (1 - h^2) (T - W).
+// Low quality takes the pixel's slope variance per vertex: each fetched slot's, as high
+// quality's g v + (1 - g) W + (1 - g^2) (T - W) (ocean.frag add_slope) with the fetched
+// within-texel variance v at its mean W over the level read there. It depends on the vertex's
+// footprint f alone, so renderer.c (pixel_var_at) tabulates it per run at 8 footprints and
+// this reads it back linearly: 20 instructions on Vivante for any number of slots, where the
+// loop over the slots cost 28 each.
 vec2 fetched_var(float f)
 {
-    vec2 var = vec2(0.0);
-    for (int i = 0; i < FS_PATTERNS; i++) {
-        vec4 l = slot_lod_v[i];
-        float h = min(clamp(l.x * f + l.y, 0.0, 1.0) *
-                      clamp(l.w + l.z * f, 0.0, lod_cmax_v[i].x), 1.0);
-        vec4 wt = slope_wt_v[i];
-        float lam = clamp(wt.z * f + wt.w, 0.0, 15.0), l0 = floor(lam);
-        int i0 = int(l0), i1 = int(min(l0 + 1.0, 15.0));
-        vec2 w = wt.xy * mix(slot_wfrac_v[i0][i], slot_wfrac_v[i1][i], lam - l0);
-        var += w + (1.0 - h * h) * (wt.xy - w);
-    }
-    return var;
+#if FS_PATTERNS > 0
+    // linear between knots as the sum of their hat functions: no dynamic index (one, into
+    // 16 knots, cost Mali-400 and Vivante as much)
+    float t = (f - var_knot_frame_v.x) * var_knot_frame_v.y;
+    t = clamp(t, 0.0, 7.0);
+    vec4 w0 = max(1.0 - abs(vec4(t) - vec4(0.0, 1.0, 2.0, 3.0)), 0.0);
+    vec4 w1 = max(1.0 - abs(vec4(t) - vec4(4.0, 5.0, 6.0, 7.0)), 0.0);
+    return vec2(dot(w0, var_knot_v[0]) + dot(w1, var_knot_v[1]),
+                dot(w0, var_knot_v[2]) + dot(w1, var_knot_v[3]));
+#else
+    return vec2(0.0);
+#endif
 }
 #endif
 
@@ -284,9 +282,15 @@ void main()
     vec2 s0 = a_geo_slope.xy + lin_s0.xy -
               a_rest * inversesqrt(max(EARTH_R2 - dot(a_rest, a_rest), 1.0));
     float h = lin_s0.z;
-    v_lin = lookups(v, s0);
-    v_lin_dx = (lookups(v, s0 + vec2(h, 0.0)) - lookups(v, s0 - vec2(h, 0.0))) / (2.0 * h);
-    v_lin_dy = (lookups(v, s0 + vec2(0.0, h)) - lookups(v, s0 - vec2(0.0, h))) / (2.0 * h);
+    // Four lookups at s0 +- h on each axis: their differences are the central derivatives,
+    // their mean the value at s0 plus h^2/4 of the Hessian's trace, halfway to the mean over
+    // slopes of variance h^2 (1/2 h^2 tr H) that the pixel's linearisation otherwise misses; a
+    // fifth lookup at s0 itself cost 45 of a vertex shader's 365 instructions on Vivante.
+    vec4 lxp = lookups(v, s0 + vec2(h, 0.0)), lxm = lookups(v, s0 - vec2(h, 0.0));
+    vec4 lyp = lookups(v, s0 + vec2(0.0, h)), lym = lookups(v, s0 - vec2(0.0, h));
+    v_lin = 0.25 * (lxp + lxm + lyp + lym);
+    v_lin_dx = (lxp - lxm) / (2.0 * h);
+    v_lin_dy = (lyp - lym) / (2.0 * h);
     // Ross BRDF (Bruneton eq. 15) = p(zeta_h) F(v.h) / (4 cos_v cos^4 theta_h (1 + L(v) + L(l))):
     // the slope density p is the pixel's (ocean.frag); the rest varies slowly and is evaluated
     // here at the vertex's mean normal, the shadowing with the sea's whole slope variance.
@@ -302,7 +306,8 @@ void main()
     float var_v = mix(total_var.y, total_var.x, wx) + dot(a_geo_slope.zw, vec2(wx, 1.0 - wx));
     float c5 = 1.0 - clamp(dot(v, hv), 0.0, 1.0);
     float fs = 0.02 + 0.98 * c5 * c5 * c5 * c5 * c5;   // Schlick, as in eq. 15
-    float shadow = 1.0 + ross_lambda(cos_v, var_v) + ross_lambda(cos_l, var_v);
+    vec2 lam = ross_lambda2(vec2(cos_v, cos_l), var_v);
+    float shadow = 1.0 + lam.x + lam.y;
     float ross = cos_l > 0.0 ? fs / (8.0 * PI * hn * hn * hn * hn * cos_v * shadow) : 0.0;
     vec2 zeta = -hv.xy / max(hv.z, 0.05) - s0;
     vec2 var_base = a_geo_slope.zw + const_slope.zw + unresolved_var;
@@ -330,17 +335,16 @@ void main()
     v_sun = vec4(zeta, ross * inversesqrt(var.x * var.y), fresnel_eff_e(sig_v));
     v_base = vec4(0.5 / var, fresnel_eff_k(sig_v), lf);
 #endif
-#if FS_PATTERNS > 0
-    v_uv0 = pattern_uv_offset[0] + a_rest * pattern_inv_size[0];
-#endif
+#define SLOT_UV(i) (pattern_uv_offset[i] + a_rest * pattern_inv_size[i])
 #if FS_PATTERNS > 1
-    v_uv1 = pattern_uv_offset[1] + a_rest * pattern_inv_size[1];
-#endif
-#if FS_PATTERNS > 2
-    v_uv2 = pattern_uv_offset[2] + a_rest * pattern_inv_size[2];
+    v_uv01 = vec4(SLOT_UV(0), SLOT_UV(1));
+#elif FS_PATTERNS > 0
+    v_uv01 = SLOT_UV(0);
 #endif
 #if FS_PATTERNS > 3
-    v_uv3 = pattern_uv_offset[3] + a_rest * pattern_inv_size[3];
+    v_uv23 = vec4(SLOT_UV(2), SLOT_UV(3));
+#elif FS_PATTERNS > 2
+    v_uv23 = SLOT_UV(2);
 #endif
 #ifndef QUALITY_HIGH
     // and no whitecap table: eq. 6's coverage from the vertex's moments, as high quality's

@@ -42,8 +42,8 @@ enum ocean_uniform {
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_SUN,
     OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
-    OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_SLOT_LOD_V,
-    OU_SLOPE_WT_V, OU_LOD_CMAX_V, OU_WFRAC_V, OU_COUNT
+    OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
+    OU_VAR_KNOT_FRAME_V, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -54,8 +54,8 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
     "haze_sun", "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
-    "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "slot_lod_v",
-    "slope_wt_v", "lod_cmax_v", "slot_wfrac_v"
+    "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "var_knot_v",
+    "var_knot_frame_v"
 };
 
 enum sky_uniform {
@@ -140,6 +140,7 @@ static const struct shader_attrib sky_attribs[1] = { { "a_ndc", 0 } };
 enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_PATTERNS = 2 };
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
+#define VAR_KNOTS 8                   /* low quality's pixel variance per run (pixel_var_at) */
 
 /* A table with mips on the GPU: one texture holding the chain or, with run_lod, one texture
  * per level, each without mips. Binding level l's texture is how a GLES 2 fragment shader
@@ -1657,6 +1658,31 @@ static float wc_trust(const struct fs_slot *sl, float level_mean)
     return s2 + n2 > 0.0 ? (float)(s2 / (s2 + n2)) : 0.0f;
 }
 
+/* Low quality's pixel slope variance from the fetched slots at footprint f (log2 m), as high
+ * quality's g v + (1 - g) W + (1 - g^2) (T - W) (ocean.frag add_slope) takes it with the
+ * fetched within-texel variance v at its mean W over the level read there (log-linear
+ * between levels): W + (1 - h^2) (T - W), h = min(g, 1). Per slot s: its weight's terms
+ * sl_lod, largest contrast factor cmax[s][0], wt (T xy; its level at f: wt[2] f + wt[3]), W / T
+ * per level wfrac[l][s]. */
+static void pixel_var_at(const float sl_lod[][4], const float cmax[][2], const float wt[][4],
+                         const float wfrac[][4], int k, float f, float out[2])
+{
+    out[0] = out[1] = 0.0f;
+    for (int s = 0; s < k; s++) {
+        const float *l = sl_lod[s];
+        float g = fminf(fmaxf(l[0] * f + l[1], 0.0f), 1.0f) *
+                  fminf(fmaxf(l[3] + l[2] * f, 0.0f), cmax[s][0]);
+        float h = fminf(g, 1.0f);
+        float lam = fminf(fmaxf(wt[s][2] * f + wt[s][3], 0.0f), (float)(SLOT_LEVELS - 1));
+        int i0 = (int)floorf(lam), i1 = i0 + 1 < SLOT_LEVELS ? i0 + 1 : i0;
+        float frac = wfrac[i0][s] + (wfrac[i1][s] - wfrac[i0][s]) * (lam - (float)i0);
+        for (int c = 0; c < 2; c++) {
+            float w = wt[s][c] * frac;
+            out[c] += w + (1.0f - h * h) * (wt[s][c] - w);
+        }
+    }
+}
+
 static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix,
                           float lf_far, float lf_near)
 {
@@ -1686,8 +1712,8 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         smu[s][3] = within_at(&sl->level_var[0][1], 2, lev, sl->top_level[0]);
         svar[s][0] = sl->top_slope[2];
         svar[s][1] = sl->top_slope[3];
-        /* low quality's vertex stage (ocean.vert fetched_var): T and the level read at
-         * footprint f, a f + b (the run's level, or the per-pixel LOD f + log2 density) */
+        /* low quality's pixel variance (pixel_var_at): T and the level read at footprint
+         * f, a f + b (the run's level, or the per-pixel LOD f + log2 density) */
         wt_v[s][0] = svar[s][0];
         wt_v[s][1] = svar[s][1];
         wt_v[s][2] = r->run_lod ? 0.0f : 1.0f;
@@ -1712,13 +1738,23 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     glUniform4fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
-    /* low quality's vertex stage: the weights' terms, T and its level, W / T per level (own
-     * names: a uniform in both stages needs one precision) */
-    glUniform4fv(u[OU_WFRAC_V], SLOT_LEVELS, &wfrac[0][0]);
-    glUniform4fv(u[OU_SLOT_LOD_V], SWELL_MAX_PATTERNS, &sl_lod[0][0]);
-    glUniform4fv(u[OU_SLOPE_WT_V], SWELL_MAX_PATTERNS, &wt_v[0][0]);
-    glUniform2fv(u[OU_LOD_CMAX_V], SWELL_MAX_PATTERNS, &cmax[0][0]);
     glUniform2f(u[OU_LOD_FRAME], alt * alt, log2f(pix / alt));
+    if (r->d.quality == QUALITY_HIGH)
+        return;
+    /* low quality's vertex stage (ocean.vert fetched_var): the fetched slots' pixel variance
+     * depends on the vertex's footprint f alone, so it is tabulated here at VAR_KNOTS knots
+     * over the run's footprints (from half an octave nearer than its nearest row to one
+     * farther than its farthest: a row's vertices off the screen's centre lie farther) */
+    float f0 = lf_near - 0.5f, f1 = fmaxf(lf_far + 1.0f, f0 + 0.5f);
+    float knot[2][VAR_KNOTS];         /* x at the knots, then y: ocean.vert's 4 vec4 */
+    for (int j = 0; j < VAR_KNOTS; j++) {
+        float f = f0 + (f1 - f0) * (float)j / (float)(VAR_KNOTS - 1), v[2];
+        pixel_var_at(sl_lod, cmax, wt_v, wfrac, k < r->nfs ? k : r->nfs, f, v);
+        knot[0][j] = v[0];
+        knot[1][j] = v[1];
+    }
+    glUniform4fv(u[OU_VAR_KNOT_V], VAR_KNOTS / 2, &knot[0][0]);
+    glUniform2f(u[OU_VAR_KNOT_FRAME_V], f0, (float)(VAR_KNOTS - 1) / (f1 - f0));
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
