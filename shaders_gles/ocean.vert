@@ -151,9 +151,9 @@ varying vec4 v_extra;       // coverage (no whitecap fetched), sky LOD offset, t
                             // transmittance, lod_foot (so high quality's varyings fit GLES2's
                             // 8 rows)
 #else
-uniform vec4 var_knot_v[4];             // the fetched slots' pixel slope variance at 8
-uniform vec2 var_knot_frame_v;          // footprints (x: 0-3, 4-7; y), the first's footprint,
-                                        // knots per unit (fetched_var)
+uniform vec4 var_knot_v[2];             // the fetched slots' pixel slope variance at 4
+uniform vec2 var_knot_frame_v;          // footprints (x; y), the first's footprint, knots per
+                                        // unit of footprint (fetched_var)
 uniform vec3 foam_radiance;             // Lambertian 0.4 foam lit by sun and sky (x exposure)
 varying vec4 v_base;        // 0.5 / the slope variance, xy; eq. 26's k; lod_foot
 #endif
@@ -231,20 +231,18 @@ float lod_foot(vec2 p)
 // Low quality takes the pixel's slope variance per vertex: each fetched slot's, as high
 // quality's g v + (1 - g) W + (1 - g^2) (T - W) (ocean.frag add_slope) with the fetched
 // within-texel variance v at its mean W over the level read there. It depends on the vertex's
-// footprint f alone, so renderer.c (pixel_var_at) tabulates it per run at 8 footprints and
+// footprint f alone, so renderer.c (pixel_var_at) tabulates it per run at 4 footprints and
 // this reads it back linearly: 20 instructions on Vivante for any number of slots, where the
-// loop over the slots cost 28 each.
+// loop over the slots cost 28 each (8 knots cost Mali-400 23 more: its 2- to 4-slot programs
+// passed 512).
 vec2 fetched_var(float f)
 {
 #if FS_PATTERNS > 0
     // linear between knots as the sum of their hat functions: no dynamic index (one, into
     // 16 knots, cost Mali-400 and Vivante as much)
-    float t = (f - var_knot_frame_v.x) * var_knot_frame_v.y;
-    t = clamp(t, 0.0, 7.0);
-    vec4 w0 = max(1.0 - abs(vec4(t) - vec4(0.0, 1.0, 2.0, 3.0)), 0.0);
-    vec4 w1 = max(1.0 - abs(vec4(t) - vec4(4.0, 5.0, 6.0, 7.0)), 0.0);
-    return vec2(dot(w0, var_knot_v[0]) + dot(w1, var_knot_v[1]),
-                dot(w0, var_knot_v[2]) + dot(w1, var_knot_v[3]));
+    float t = clamp((f - var_knot_frame_v.x) * var_knot_frame_v.y, 0.0, 3.0);
+    vec4 w = max(1.0 - abs(vec4(t) - vec4(0.0, 1.0, 2.0, 3.0)), 0.0);
+    return vec2(dot(w, var_knot_v[0]), dot(w, var_knot_v[1]));
 #else
     return vec2(0.0);
 #endif

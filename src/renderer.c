@@ -140,7 +140,7 @@ static const struct shader_attrib sky_attribs[1] = { { "a_ndc", 0 } };
 enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_PATTERNS = 2 };
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
-#define VAR_KNOTS 8                   /* low quality's pixel variance per run (pixel_var_at) */
+#define VAR_KNOTS 4                   /* low quality's pixel variance per run (pixel_var_at) */
 
 /* A table with mips on the GPU: one texture holding the chain or, with run_lod, one texture
  * per level, each without mips. Binding level l's texture is how a GLES 2 fragment shader
@@ -1744,16 +1744,19 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     /* low quality's vertex stage (ocean.vert fetched_var): the fetched slots' pixel variance
      * depends on the vertex's footprint f alone, so it is tabulated here at VAR_KNOTS knots
      * over the run's footprints (from half an octave nearer than its nearest row to one
-     * farther than its farthest: a row's vertices off the screen's centre lie farther) */
+     * farther than its farthest: a row's vertices off the screen's centre lie farther).
+     * Linear between 4 knots it is within ~5 % of pixel_var_at, the most near a fade's
+     * kink (1e-4 of slope variance in a 10 m moderate view); 8 knots took lima's vertex
+     * shaders fetching 2-4 slots past 512 instructions */
     float f0 = lf_near - 0.5f, f1 = fmaxf(lf_far + 1.0f, f0 + 0.5f);
-    float knot[2][VAR_KNOTS];         /* x at the knots, then y: ocean.vert's 4 vec4 */
+    float knot[2][VAR_KNOTS];         /* x at the knots, then y: ocean.vert's 2 vec4 */
     for (int j = 0; j < VAR_KNOTS; j++) {
         float f = f0 + (f1 - f0) * (float)j / (float)(VAR_KNOTS - 1), v[2];
         pixel_var_at(sl_lod, cmax, wt_v, wfrac, k < r->nfs ? k : r->nfs, f, v);
         knot[0][j] = v[0];
         knot[1][j] = v[1];
     }
-    glUniform4fv(u[OU_VAR_KNOT_V], VAR_KNOTS / 2, &knot[0][0]);
+    glUniform4fv(u[OU_VAR_KNOT_V], 2, &knot[0][0]);
     glUniform2f(u[OU_VAR_KNOT_FRAME_V], f0, (float)(VAR_KNOTS - 1) / (f1 - f0));
 }
 
