@@ -1018,8 +1018,8 @@ static int probe_draw(struct renderer *r, const struct camera *cam, const char *
  * captured: a variant is refused where the driver says so (refusal_text) or, on a device
  * that executes draws (the target's clear reads back; Mesa's noop drm-shims execute none),
  * where it leaves the target empty. A refused variant's rows are drawn with the nearest one
- * that runs and fetches fewer patterns or whitecaps (variant_use); if none runs, the
- * renderer cannot draw the sea here (SWELL_E_SHADER: the caller tries low quality). With
+ * that runs and fetches fewer patterns or whitecaps, else more (variant_use); if none runs,
+ * the renderer cannot draw the sea here (SWELL_E_SHADER: the caller tries low quality). With
  * SWELL_SHADER_LABELS=1 each probe draw is labelled on stderr, so a driver's statistics
  * (tools/devices.py) are told apart by program. The sky's two programs are drawn once too
  * (towards the sun, so its disc is in view). */
@@ -1117,6 +1117,14 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                 for (int kw2 = kw < k2 ? kw : k2; kw2 >= 0 && use < 0; kw2--)
                     if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
                         use = VARIANT(k2, kw2);
+            /* none smaller (GC2000: the vertex shaders that evaluate eq. 6 per vertex are
+             * the ones past its 256 instructions): the one fetching the fewest more. Its
+             * extra slots fade out where this variant's rows stop fetching them (their
+             * weights, set_slot_lods), so the rows draw the same sea at more cost. */
+            for (int k2 = k; k2 <= r->nfs && use < 0; k2++)
+                for (int kw2 = kw; kw2 <= (k2 < r->nwc ? k2 : r->nwc) && use < 0; kw2++)
+                    if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
+                        use = VARIANT(k2, kw2);
             r->variant_use[v] = use;
             if (use < 0)
                 return swell_fail(err, SWELL_E_SHADER, "renderer: the driver (%s) runs no %s "
@@ -1129,7 +1137,7 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
         }
     if (r->refused)
         fprintf(stderr, "swell: the driver (%s) refused %d ocean program(s); their rows are "
-                "drawn fetching fewer patterns/whitecap tables:%s\n",
+                "drawn fetching fewer (or more) patterns/whitecap tables:%s\n",
                 (const char *)glGetString(GL_RENDERER), r->refused, list);
     return gpu_check("renderer: start-up probe", err);
 }

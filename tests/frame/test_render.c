@@ -1347,7 +1347,8 @@ static void test_glitter_width(void **state)
  * registers say so only on stderr, renderer.c probe_programs): with every variant fetching a
  * pattern refused, each tier and quality still covers every pixel with sea, its rows drawn
  * with the variant fetching none, and the frame differs from the full one (the detail is
- * gone, so the fallback is really drawn); with that one refused too, the renderer fails with
+ * gone, so the fallback is really drawn); with only that one refused, its rows are drawn with
+ * one fetching more, close to the full frame; with every one refused, the renderer fails with
  * SWELL_E_SHADER instead of drawing sky alone. */
 static void test_refused_fallback(void **state)
 {
@@ -1371,6 +1372,22 @@ static void test_refused_fallback(void **state)
                           render_quality_name(q), g_refused, d);
             assert_true(g_refused > 0);
             assert_true(d > 1.0);
+            /* only the one fetching none refused (GC2000's case): the renderer still runs
+             * (it failed here before), its rows drawn with the one fetching the fewest
+             * more, whose extra slot fades out there (these tables' largest pattern is
+             * fetched to the horizon, so the frames come out equal) */
+            struct camera hz = c;   /* the horizon in view: rows fetching no pattern */
+            hz.pitch_deg = -4.0f;
+            g_refuse = 0;
+            render(tiers[t], q, GEOMETRY_GRID, 30.0f, 0.0f, &hz, 1.0, fx.img2, NULL);
+            g_refuse = 1u;
+            render(tiers[t], q, GEOMETRY_GRID, 30.0f, 0.0f, &hz, 1.0, fx.img, NULL);
+            check_defined(fx.img, "the variant fetching no pattern refused");
+            double d0 = rmse_rgb(fx.img, fx.img2);
+            print_message("%s %s: the variant fetching none refused: RMSE %.2f from the full "
+                          "frame\n", gpu_tier_name(tiers[t]), render_quality_name(q), d0);
+            assert_int_equal(g_refused, 1);
+            assert_true(d0 < 0.1 * d);
             g_refuse = 0;
         }
     struct gpu gpu;
