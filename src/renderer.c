@@ -1118,10 +1118,15 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                     if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
                         use = VARIANT(k2, kw2);
             /* none smaller (GC2000: the vertex shaders that evaluate eq. 6 per vertex are
-             * the ones past its 256 instructions): the one fetching the fewest more. Its
-             * extra slots fade out where this variant's rows stop fetching them (their
+             * the ones past its 256 instructions): the most patterns up to k with more
+             * whitecap tables, else the one fetching the fewest more patterns. Extra slots
+             * and tables fade out where this variant's rows stop fetching them (their
              * weights, set_slot_lods), so the rows draw the same sea at more cost. */
-            for (int k2 = k; k2 <= r->nfs && use < 0; k2++)
+            for (int k2 = k; k2 >= 0 && use < 0; k2--)
+                for (int kw2 = kw + 1; kw2 <= (k2 < r->nwc ? k2 : r->nwc) && use < 0; kw2++)
+                    if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
+                        use = VARIANT(k2, kw2);
+            for (int k2 = k + 1; k2 <= r->nfs && use < 0; k2++)
                 for (int kw2 = kw; kw2 <= (k2 < r->nwc ? k2 : r->nwc) && use < 0; kw2++)
                     if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
                         use = VARIANT(k2, kw2);
