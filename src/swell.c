@@ -585,6 +585,20 @@ int main(int argc, char **argv)
         .detile = o.detile,
     };
     rc = renderer_create(&rd, &r, &err);
+    if (rc == SWELL_E_SHADER && o.tier < 0 && gpu.caps.tier != TIER_GLES2_MIN) {
+        /* the tier swell chose runs none of this quality's programs (VideoCore IV: vc4
+         * cannot allocate registers for any high-quality vertex shader that fetches the
+         * displacement): the same quality on gles2-min, whose vertex shaders are smaller
+         * (the CPU displaces the grid), before the other quality */
+        fprintf(stderr, "swell: %s\nswell: %s quality does not run on tier %s here; trying "
+                "--tier gles2-min\n", err.msg, render_quality_name(rd.quality),
+                gpu_tier_name(gpu.caps.tier));
+        gpu_shutdown(&gpu);
+        memset(&gpu, 0, sizeof gpu);
+        if (gpu_init(&gpu, TIER_GLES2_MIN, budget, &err))
+            goto fail_platform;
+        rc = renderer_create(&rd, &r, &err);
+    }
     if (rc == SWELL_E_SHADER) {
         /* the driver runs no ocean program of this quality (renderer.c probe_programs): the
          * same sea in the other rather than none (low's vertex shader carries more of the
