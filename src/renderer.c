@@ -1023,6 +1023,18 @@ static int probe_draw(struct renderer *r, const struct camera *cam, const char *
  * SWELL_SHADER_LABELS=1 each probe draw is labelled on stderr, so a driver's statistics
  * (tools/devices.py) are told apart by program. The sky's two programs are drawn once too
  * (towards the sun, so its disc is in view). */
+/* The first variant the driver runs, k2 from ka to kb and kw2 from wa to wb (each by its step;
+ * variant_exists skips the counts a k2 has no program for), or -1. */
+static int running_variant(const struct renderer *r, int ka, int kb, int kstep, int wa, int wb,
+                           int wstep)
+{
+    for (int k2 = ka; kstep > 0 ? k2 <= kb : k2 >= kb; k2 += kstep)
+        for (int kw2 = wa; wstep > 0 ? kw2 <= wb : kw2 >= wb; kw2 += wstep)
+            if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
+                return VARIANT(k2, kw2);
+    return -1;
+}
+
 static int probe_programs(struct renderer *r, struct swell_err *err)
 {
     GLint prev_fbo = 0;
@@ -1113,23 +1125,16 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
             if (!r->ocean[v].program)
                 continue;
             r->refused += !r->variant_ok[v];
-            for (int k2 = k; k2 >= 0 && use < 0; k2--)
-                for (int kw2 = kw < k2 ? kw : k2; kw2 >= 0 && use < 0; kw2--)
-                    if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
-                        use = VARIANT(k2, kw2);
+            use = running_variant(r, k, 0, -1, kw, 0, -1);
             /* none smaller (GC2000: the vertex shaders that evaluate eq. 6 per vertex are
              * the ones past its 256 instructions): the most patterns up to k with more
              * whitecap tables, else the one fetching the fewest more patterns. Extra slots
              * and tables fade out where this variant's rows stop fetching them (their
              * weights, set_slot_lods), so the rows draw the same sea at more cost. */
-            for (int k2 = k; k2 >= 0 && use < 0; k2--)
-                for (int kw2 = kw + 1; kw2 <= (k2 < r->nwc ? k2 : r->nwc) && use < 0; kw2++)
-                    if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
-                        use = VARIANT(k2, kw2);
-            for (int k2 = k + 1; k2 <= r->nfs && use < 0; k2++)
-                for (int kw2 = kw; kw2 <= (k2 < r->nwc ? k2 : r->nwc) && use < 0; kw2++)
-                    if (variant_exists(r, k2, kw2) && r->variant_ok[VARIANT(k2, kw2)])
-                        use = VARIANT(k2, kw2);
+            if (use < 0)
+                use = running_variant(r, k, 0, -1, kw + 1, SWELL_MAX_PATTERNS, 1);
+            if (use < 0)
+                use = running_variant(r, k + 1, r->nfs, 1, kw, SWELL_MAX_PATTERNS, 1);
             r->variant_use[v] = use;
             if (use < 0)
                 return swell_fail(err, SWELL_E_SHADER, "renderer: the driver (%s) runs no %s "

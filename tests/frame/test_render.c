@@ -1376,7 +1376,7 @@ static void test_refused_fallback(void **state)
              * (it failed here before), its rows drawn with the one fetching the fewest
              * more, whose extra slot fades out there (these tables' largest pattern is
              * fetched to the horizon, so the frames come out equal) */
-            struct camera hz = c;   /* the horizon in view: rows fetching no pattern */
+            struct camera hz = c;   /* the horizon in view, where the fewest are fetched */
             hz.pitch_deg = -4.0f;
             g_refuse = 0;
             render(tiers[t], q, GEOMETRY_GRID, 30.0f, 0.0f, &hz, 1.0, fx.img2, NULL);
