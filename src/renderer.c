@@ -29,6 +29,7 @@
 #include "water.h"
 #include "capture.h"
 #include "detile.h"
+#include "vshade.h"
 
 #define SKY_MAP_SIZE 256
 #define FRESNEL_FALLBACK 64
@@ -116,11 +117,19 @@ static const char *const sky_uniform_names[SU_COUNT] = {
 #define VARIANT_K(v) ((v) / (SWELL_MAX_PATTERNS + 1))
 #define VARIANT_KW(v) ((v) % (SWELL_MAX_PATTERNS + 1))
 
-enum { A_POS = 0, A_REST, A_GEO_SLOPE, A_GEO_K, A_GRID, A_COUNT };
-static const struct shader_attrib ocean_attribs[A_COUNT] = {
-    { "a_pos", A_POS }, { "a_rest", A_REST }, { "a_geo_slope", A_GEO_SLOPE }, { "a_geo_k", A_GEO_K },
+/* gles2-min's attributes are vshade.h's vectors, in order; a vertex-texture-fetch program has
+ * a_grid alone (at 0, with a_pos: GLES 2 promises 8 locations). */
+enum { A_POS = 0, A_REST, A_GEO, A_LIN, A_LIN_DX, A_LIN_DY, A_SUN, A_FOG, A_COUNT, A_GRID = 0 };
+static const struct shader_attrib ocean_attribs[] = {
+    { "a_pos", A_POS }, { "a_rest", A_REST }, { "a_geo", A_GEO }, { "a_lin", A_LIN },
+    { "a_lin_dx", A_LIN_DX }, { "a_lin_dy", A_LIN_DY }, { "a_sun", A_SUN }, { "a_fog", A_FOG },
     { "a_grid", A_GRID }
 };
+_Static_assert(VSHADE_POS == 4 * A_POS && VSHADE_REST == 4 * A_REST && VSHADE_GEO == 4 * A_GEO &&
+               VSHADE_LIN == 4 * A_LIN && VSHADE_LIN_DX == 4 * A_LIN_DX &&
+               VSHADE_LIN_DY == 4 * A_LIN_DY && VSHADE_SUN == 4 * A_SUN &&
+               VSHADE_FOG == 4 * A_FOG && VSHADE_FLOATS == 4 * A_COUNT,
+               "the attributes are vshade.h's vectors in order");
 
 /* Vertex-texture-fetch grid (ocean.vert VTF_PATTERNS): its uniforms, per pattern. */
 enum vtf_uniform {
@@ -214,7 +223,10 @@ struct renderer {
     int nwc;                          /* leading slots whose whitecaps are fetched (high) */
     unsigned cpu_mask;                /* patterns resolved per vertex */
     struct fs_slot slot[SWELL_MAX_PATTERNS];
-    float *verts;
+    float *verts;                     /* VTF: the grid parameters; else grid.c's vertices */
+    float *shaded;                    /* gles2-min: vshade.c's, uploaded each frame */
+    struct vshade_frame vf;           /* this frame's terms of the vertex stage (vertex_frame):
+                                       * vshade.c's input, the VTF programs' uniforms */
     float exposure;
     float water_albedo[3];            /* eq. 28's water body, L_sea = albedo E / pi (water.h) */
     uint64_t stream_bytes;
@@ -349,6 +361,7 @@ void renderer_destroy(struct renderer *r)
         shader_program_destroy(&r->ocean[v]);
     free(r->fresnel_own.data);
     free(r->verts);
+    free(r->shaded);
     sky_destroy(&r->sky);
     grid_destroy(r->grid);
     free(r);
@@ -818,7 +831,7 @@ static int build_programs(struct renderer *r, struct swell_err *err)
     od.uniform_names = ocean_uniform_names;
     od.uniform_count = OU_COUNT;
     od.attribs = ocean_attribs;
-    od.attrib_count = A_COUNT;
+    od.attrib_count = (int)(sizeof(ocean_attribs) / sizeof(ocean_attribs[0]));
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
             int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s",
@@ -885,12 +898,16 @@ static int create_sky_mesh(struct renderer *r, struct swell_err *err)
 static int create_buffers(struct renderer *r, struct swell_err *err)
 {
     static const float quad[8] = { -1.0f, -1.0f, 1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f };
-    /* VTF: a static (i, j) / (w - 1, h - 1) per vertex; else the streamed CPU vertices */
-    size_t vbytes = sizeof(float) * (r->vtf ? 2 : GRID_FLOATS) * (size_t)grid_vertex_count(r->grid);
+    /* VTF: a static (i, j) / (w - 1, h - 1) per vertex; else the streamed CPU vertices, grid.c's
+     * and vshade.c's from them */
+    size_t nv = (size_t)grid_vertex_count(r->grid);
+    size_t vbytes = sizeof(float) * (r->vtf ? 2 : VSHADE_FLOATS) * nv;
+    size_t gbytes = sizeof(float) * (r->vtf ? 2 : GRID_FLOATS) * nv;
     size_t ibytes = sizeof(uint16_t) * (size_t)grid_index_count(r->grid);
     int rc;
-    if (!(r->verts = calloc(1, vbytes)))
-        return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for %zu vertex bytes", vbytes);
+    if (!(r->verts = calloc(1, gbytes)) || (!r->vtf && !(r->shaded = calloc(1, vbytes))))
+        return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for %zu vertex bytes",
+                          vbytes + gbytes);
     if ((rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, vbytes,
                                 r->vtf ? GL_STATIC_DRAW : GL_STREAM_DRAW,
                                 r->vtf ? "renderer: sea grid parameters" : "renderer: sea vertices",
@@ -1348,6 +1365,68 @@ static void add_k_constants(const struct fs_slot *sl, float ck[2])
     ck[1] += sl->top_k[1];
 }
 
+/* Both passes are linearised about the slots' mean slope (ocean.vert) with a step of the slope
+ * deviation of every slot, fetched or not: the same secant in every run, so no seam where a run
+ * drops a pattern (with the fetched slots' deviation alone, fetching every pattern everywhere
+ * and the runs differed by RMSE 0.85 at 1 km in low quality; with this, 0.19:
+ * test_fetch_runs). lin: the mean slope xy and the step; tot: every pattern's slope variance
+ * and the unresolved. */
+static void lin_frame(const struct renderer *r, float lin[3], float tot[2])
+{
+    float var = 0.0f;
+    lin[0] = lin[1] = 0.0f;
+    tot[0] = r->t->mss_unresolved_x;
+    tot[1] = r->t->mss_unresolved_y;
+    for (int s = 0; s < r->nfs; s++) {
+        const float *m = r->slot[s].top_slope;
+        lin[0] += m[0];
+        lin[1] += m[1];
+        tot[0] += m[2];
+        tot[1] += m[3];
+        var += fmaxf(m[2], m[3]);
+    }
+    lin[2] = fmaxf(sqrtf(var), 0.01f);
+}
+
+/* The aerial perspective's air mass per metre of path from the camera's height h through the
+ * exponential atmosphere, (1 - e^{-h/H}) / h -> 1 / H at the sea (ocean.vert haze_frame). */
+static float haze_air_mass(const struct sky_haze *hz, const struct camera *cam)
+{
+    double h = fmax(cam->pos[2], 0.0), hs = hz->scale_height_m;
+    return (float)(h > 1e-3 * hs ? -expm1(-h / hs) / h : (1.0 - 0.5 * h / hs) / hs);
+}
+
+/* The camera's altitude for the pixel footprint (at least 0.5 m) and one pixel's angle, rad. */
+static void view_scale(const struct camera *cam, int height, float *alt, float *pix)
+{
+    float fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * (float)(M_PI / 180.0);
+    *alt = fmaxf((float)cam->pos[2], 0.5f);
+    *pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
+}
+
+/* This frame's values for the terms of the vertex alone: vshade.c takes them on gles2-min, the
+ * programs (ocean.vert's vterms.glsl, and ocean.frag some of them) as uniforms. */
+static void vertex_frame(struct renderer *r, const struct camera *cam, int height)
+{
+    struct vshade_frame *f = &r->vf;
+    float alt, pix;
+    memset(f, 0, sizeof(*f));
+    lin_frame(r, f->lin_s0, f->total_var);
+    memcpy(f->sun_dir, r->sky.sun_dir, sizeof(f->sun_dir));
+    f->fresnel_uv_scale[0] = (float)r->fresnel->width / (float)r->atlas_w;
+    f->fresnel_uv_scale[1] = (float)r->fresnel->height / (float)r->atlas_h;
+    f->sky_map_size = (float)r->sky.size;
+    view_scale(cam, height, &alt, &pix);
+    f->lod_frame[0] = alt * alt;
+    f->lod_frame[1] = log2f(pix / alt);
+    memcpy(f->haze_tau, r->haze.tau_ext, sizeof(f->haze_tau));
+    f->haze_frame[0] = haze_air_mass(&r->haze, cam);
+    f->haze_frame[1] = r->haze.mie_g;
+    memcpy(f->haze_ray, r->haze.ray, sizeof(f->haze_ray));
+    memcpy(f->haze_mie, r->haze.mie, sizeof(f->haze_mie));
+    f->fog = r->d.quality != QUALITY_HIGH;
+}
+
 /* Uniforms of the variant fetching the first k slots' slopes and the first kw's whitecaps;
  * the rest enter as their patches' constants. */
 static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct camera *cam,
@@ -1400,29 +1479,26 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     float atlas[4];
     atlas_hash_frame(r, atlas);
     glUniform4fv(u[OU_DETILE_ATLAS], 1, atlas);
-    glUniform2f(u[OU_FRESNEL_V], (float)r->fresnel->width / (float)r->atlas_w,
-                (float)r->fresnel->height / (float)r->atlas_h);
+    glUniform2fv(u[OU_FRESNEL_V], 1, r->vf.fresnel_uv_scale);
     bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
     glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));
-    glUniform1f(u[OU_SKY_SIZE], (float)r->sky.size);
+    glUniform1f(u[OU_SKY_SIZE], r->vf.sky_map_size);
     glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
     glUniform1f(u[OU_SKY_LEVEL_SCALE], 255.0f / (float)SKY_LEVEL_ALPHA);
     glUniform1f(u[OU_SKY_TOP], (float)(r->sky.levels - 1));
     glUniform1f(u[OU_SKY_BIAS_MAX], r->gpu->caps.max_lod_bias);
-    glUniform3fv(u[OU_SUN_DIR], 1, r->sky.sun_dir);
+    glUniform3fv(u[OU_SUN_DIR], 1, r->vf.sun_dir);
     {
         /* aerial perspective (ocean.vert haze): air mass per metre of path from the camera's
          * height h through the exponential atmosphere, (1 - e^{-h/H}) / h -> 1 / H at the sea;
          * the horizon terms come from the sky (update_sky_constants). Low quality takes them
          * in ocean.vert, high in ocean.frag: one name serves both, no program has both. */
         const struct sky_haze *hz = &r->haze;
-        double h = fmax(cam->pos[2], 0.0), hs = hz->scale_height_m;
-        float km = (float)(h > 1e-3 * hs ? -expm1(-h / hs) / h : (1.0 - 0.5 * h / hs) / hs);
-        glUniform3fv(u[OU_HAZE_TAU], 1, hz->tau_ext);
-        glUniform3fv(u[OU_HAZE_RAY], 1, hz->ray);
-        glUniform3fv(u[OU_HAZE_MIE], 1, hz->mie);
-        glUniform2f(u[OU_HAZE_FRAME], km, hz->mie_g);
+        glUniform3fv(u[OU_HAZE_TAU], 1, r->vf.haze_tau);
+        glUniform3fv(u[OU_HAZE_RAY], 1, r->vf.haze_ray);
+        glUniform3fv(u[OU_HAZE_MIE], 1, r->vf.haze_mie);
+        glUniform2fv(u[OU_HAZE_FRAME], 1, r->vf.haze_frame);
         glUniform3f(u[OU_HAZE_SUN], r->sky.sun_dir[0], r->sky.sun_dir[1], hz->mie_g);
         glUniform3f(u[OU_HAZE_TAU_RATIO], hz->tau_ext[0] / hz->tau_ext[1], 1.0f,
                     hz->tau_ext[2] / hz->tau_ext[1]);
@@ -1433,30 +1509,16 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform2fv(u[OU_UNRESOLVED], 1, unres);
     glUniform1f(u[OU_EPSILON], r->t->whitecap_epsilon);
     glUniform1f(u[OU_EPSILON_V], r->t->whitecap_epsilon);
-    /* Both passes are linearised about the slots' mean slope (ocean.vert) with a step of the
-     * slope deviation of every slot, fetched here or not: the same secant in every run, so
-     * no seam where a run drops a pattern (with the fetched slots' deviation alone, fetching
-     * every pattern everywhere and the runs differed by RMSE 0.85 at 1 km in low quality;
-     * with this, 0.19: test_fetch_runs). The pixel's ds = ds_offset + its fetched slopes. */
-    float lin[3] = { 0.0f, 0.0f, 0.0f }, var = 0.0f, dso[2] = { 0.0f, 0.0f };
-    float tot[2] = { unres[0], unres[1] };
-    for (int s = 0; s < r->nfs; s++) {
-        const float *m = r->slot[s].top_slope;
-        lin[0] += m[0];
-        lin[1] += m[1];
-        tot[0] += m[2];
-        tot[1] += m[3];
-        var += fmaxf(m[2], m[3]);
-        if (s < k) {
-            /* both add dequantised slopes, blended (detile.h: the bias by the taps' weights) */
-            dso[0] -= m[0];
-            dso[1] -= m[1];
-        }
+    /* the linearisation (lin_frame); the pixel's ds = ds_offset + its fetched slopes */
+    float dso[2] = { 0.0f, 0.0f };
+    for (int s = 0; s < k; s++) {
+        /* both add dequantised slopes, blended (detile.h: the bias by the taps' weights) */
+        dso[0] -= r->slot[s].top_slope[0];
+        dso[1] -= r->slot[s].top_slope[1];
     }
-    lin[2] = fmaxf(sqrtf(var), 0.01f);
-    glUniform3fv(u[OU_LIN_S0], 1, lin);
+    glUniform3fv(u[OU_LIN_S0], 1, r->vf.lin_s0);
     glUniform2fv(u[OU_DS_OFFSET], 1, dso);
-    glUniform2fv(u[OU_TOTAL_VAR], 1, tot);
+    glUniform2fv(u[OU_TOTAL_VAR], 1, r->vf.total_var);
 }
 
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
@@ -1756,7 +1818,7 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     glUniform4fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
-    glUniform2f(u[OU_LOD_FRAME], alt * alt, log2f(pix / alt));
+    glUniform2fv(u[OU_LOD_FRAME], 1, r->vf.lod_frame);
     if (r->d.quality == QUALITY_HIGH)
         return;
     /* low quality's vertex stage (ocean.vert fetched_var): the fetched slots' pixel variance
@@ -1783,9 +1845,8 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
 static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
                       int height)
 {
-    float alt = fmaxf((float)cam->pos[2], 0.5f);
-    float fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * (float)(M_PI / 180.0);
-    float pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
+    float alt, pix;
+    view_scale(cam, height, &alt, &pix);
     int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1, run_kw = -1;
     int run_early = 0;
     uint32_t run_key = 0;
@@ -1867,17 +1928,20 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
     float aspect = height > 0 ? (float)width / (float)height : 1.0f;
     GLint depth_bits = 0;
     int nidx;
-    size_t vbytes = sizeof(float) * GRID_FLOATS * (size_t)grid_vertex_count(r->grid);
+    size_t vbytes = sizeof(float) * VSHADE_FLOATS * (size_t)grid_vertex_count(r->grid);
     camera_view_rel(cam, view);
     camera_projection(cam, aspect, proj);
     glm_mat4_mul(proj, view, world_to_clip);
+    stream_textures(r, t_s);
+    vertex_frame(r, cam, height);   /* after the slots' constants of this loop phase */
     if (r->vtf) {
         nidx = grid_projection(r->grid, cam, aspect, &r->proj);
         stream_disp(r, t_s);
     } else {
         nidx = grid_update(r->grid, cam, aspect, t_s, r->verts);
+        if (nidx > 0)   /* the terms of each vertex alone, on the CPU (vshade.h) */
+            vshade_fill(&r->vf, r->verts, grid_vertex_count(r->grid), r->shaded);
     }
-    stream_textures(r, t_s);
 
     glViewport(0, 0, width, height);
     glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
@@ -1907,17 +1971,14 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
             glEnableVertexAttribArray(A_GRID);
             glVertexAttribPointer(A_GRID, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
         } else {
-            glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
-            for (int a = 0; a < A_GRID; a++)
+            glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->shaded);
+            /* vshade.h: eight vec4 in order (high quality's programs have no a_fog) */
+            for (int a = 0; a < A_COUNT; a++) {
                 glEnableVertexAttribArray((GLuint)a);
-            glVertexAttribPointer(A_POS, 3, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                                  (const void *)(GRID_A_POS * sizeof(float)));
-            glVertexAttribPointer(A_REST, 2, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                                  (const void *)(GRID_A_REST * sizeof(float)));
-            glVertexAttribPointer(A_GEO_SLOPE, 4, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                                  (const void *)(GRID_A_SLOPE * sizeof(float)));
-            glVertexAttribPointer(A_GEO_K, 2, GL_FLOAT, GL_FALSE, GRID_FLOATS * sizeof(float),
-                                  (const void *)(GRID_A_K * sizeof(float)));
+                glVertexAttribPointer((GLuint)a, 4, GL_FLOAT, GL_FALSE,
+                                      VSHADE_FLOATS * sizeof(float),
+                                      (const void *)(4 * (size_t)a * sizeof(float)));
+            }
         }
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
         draw_runs(r, cam, world_to_clip, height);
@@ -1934,7 +1995,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     memset(out, 0, sizeof(*out));
     out->gpu_bytes = r->gpu_bytes;
     out->cpu_bytes_per_frame = r->stream_bytes + (r->vtf ? 0 :
-        sizeof(float) * GRID_FLOATS * (uint64_t)grid_vertex_count(r->grid));
+        sizeof(float) * VSHADE_FLOATS * (uint64_t)grid_vertex_count(r->grid));
     out->vertices = grid_vertex_count(r->grid);
     out->triangles = grid_index_count(r->grid) / 3;
     out->sea_draws = r->draws;

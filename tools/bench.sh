@@ -40,9 +40,9 @@ cg_frames=${BENCH_CG_FRAMES:-4}
 cg_tiers=${BENCH_CG_TIERS:-$tiers}
 cg_paths=${BENCH_CG_PATHS:-$paths}
 # Swell's own CPU work per frame (renderer.c calls these from renderer_frame; check with nm):
-# grid projection + displacement, loop-frame blending, the sea height under the camera; and
-# the texture upload of the blend.
-cg_own="grid_update grid_projection stream_blend sea_surface_height"
+# grid projection + displacement, the vertices' shading on gles2-min (vshade.c), loop-frame
+# blending, the sea height under the camera; and the texture upload of the blend.
+cg_own="grid_update grid_projection vshade_fill stream_blend sea_surface_height"
 cg_upload="upload_chain_typed"
 
 die() { echo "bench: $*" >&2; exit 1; }
@@ -80,10 +80,11 @@ def target: if .quality == "high" then .targets_ratio.high else .targets_ratio.l
 "|---|---:|---:|---:|---:|---|",
 (.bake[] | "| \(.preset) | \(.bake_seconds | f(2)) | \(.command_seconds | f(2)) | \(.target_seconds) | \(.bytes_gpu | mi) / \(.budget_bytes | mi) | \(if .bake_seconds <= .target_seconds then "pass" else "FAIL" end) |"),
 "\n## CPU instructions per frame (callgrind)\n",
-"Counted with `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=grid_update --toggle-collect=grid_projection --toggle-collect=stream_blend --toggle-collect=upload_chain`, costs under renderer_frame divided by the calls of grid_update or grid_projection; softpipe at a twentieth of the frame size, same aspect (swell's functions run the same on any driver; the upload's driver share is softpipe's).\n",
-"| tier | camera | detile | frames | grid | stream_blend | swell total | upload (driver, softpipe) | result |",
-"|---|---|---|---:|---:|---:|---:|---:|---|",
-(.callgrind | sort_by(.tier, .path, (.detile // "on"))[] | "| \(.tier) | \(.path) | \(.detile // "on") | \(.frames // "n/a") | \(.grid_update_per_frame | mega) | \(.stream_blend_per_frame | mega) | \(.cpu_instructions_per_frame | mega) | \(.upload_chain_per_frame_softpipe | mega) | \(if .cpu_instructions_per_frame == null then "n/a" elif .cpu_instructions_per_frame <= $T.cpu_instructions_per_frame then "pass" else "FAIL" end) |"),
+"Counted with `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=grid_update --toggle-collect=grid_projection --toggle-collect=vshade_fill --toggle-collect=stream_blend --toggle-collect=upload_chain`, costs under renderer_frame divided by the calls of grid_update or grid_projection; softpipe at a twentieth of the frame size, same aspect (swell's functions run the same on any driver; the upload's driver share is softpipe's).\n",
+"vshade = vshade_fill, gles2-min's per-vertex shading on the CPU (what ocean.vert computes on the tiers with vertex texture fetch).\n",
+"| tier | camera | detile | frames | grid | vshade | stream_blend | swell total | upload (driver, softpipe) | result |",
+"|---|---|---|---:|---:|---:|---:|---:|---:|---|",
+(.callgrind | sort_by(.tier, .path, (.detile // "on"))[] | "| \(.tier) | \(.path) | \(.detile // "on") | \(.frames // "n/a") | \(.grid_update_per_frame | mega) | \(.vshade_fill_per_frame | mega) | \(.stream_blend_per_frame | mega) | \(.cpu_instructions_per_frame | mega) | \(.upload_chain_per_frame_softpipe | mega) | \(if .cpu_instructions_per_frame == null then "n/a" elif .cpu_instructions_per_frame <= $T.cpu_instructions_per_frame then "pass" else "FAIL" end) |"),
 "\n![median frame time against camera altitude, per tier and quality](bench.png)"
 JQ
 jq -r "$table_jq" "$out/results.json" >"$docs/bench.md.tmp" &&
@@ -207,7 +208,8 @@ cg_json() {   # cg_json TIER PATH DETILE OUTFILE -> JSON object on stdout
             for (k in o) s += cost[o[k]]
             printf "{\"tier\": \"%s\", \"path\": \"%s\", \"detile\": \"%s\", \"frames\": %d, \"functions\": \"%s\", ", tier, path, detile, frames, own
             printf "\"cpu_instructions_per_frame\": %.0f, \"grid_update_per_frame\": %.0f, ", s / frames, (cost["grid_update"] + cost["grid_projection"]) / frames
-            printf "\"stream_blend_per_frame\": %.0f, \"upload_chain_per_frame_softpipe\": %.0f}\n", cost["stream_blend"] / frames, cost[upl] / frames
+            printf "\"vshade_fill_per_frame\": %.0f, \"stream_blend_per_frame\": %.0f, ", cost["vshade_fill"] / frames, cost["stream_blend"] / frames
+            printf "\"upload_chain_per_frame_softpipe\": %.0f}\n", cost[upl] / frames
         }'
 }
 if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
@@ -235,7 +237,7 @@ if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
             --tables "$out/tables/$cg_scene" --path "$p" --tier "$t" --quality high \
             --detile "$d" --frames "$cg_frames" --fps 30 >"$out/logs/callgrind-$n.log" 2>&1; then
             cg_json "$t" "$p" "$d" "$f" >"$out/callgrind/$n.json"
-            echo "bench: callgrind $n: $(jq -r '"\(.cpu_instructions_per_frame) instructions/frame (grid_update \(.grid_update_per_frame), stream_blend \(.stream_blend_per_frame))"' "$out/callgrind/$n.json")"
+            echo "bench: callgrind $n: $(jq -r '"\(.cpu_instructions_per_frame) instructions/frame (grid_update \(.grid_update_per_frame), vshade_fill \(.vshade_fill_per_frame), stream_blend \(.stream_blend_per_frame))"' "$out/callgrind/$n.json")"
         else
             echo "bench: callgrind $n FAILED: $(tail -n 1 "$out/logs/callgrind-$n.log")"
         fi

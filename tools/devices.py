@@ -94,7 +94,8 @@ def parse_log(text, model):
     """The records of one run: per program, per stage, the largest shader the driver compiled
     while swell built it (some drivers compile at link) or while the probe drew it (others at
     the first draw); the smaller ones in those spans are Mesa's own clears and blits. The
-    probe's verdict says whether the driver runs it."""
+    probe's verdict says whether the driver runs it. Programs are told apart by name and tier:
+    where swell retries a tier (swell.c), the same names come again, built for another one."""
     gpu = tier = None
     stats, status, tiers, order = {}, {}, {}, []
     span = None
@@ -104,15 +105,16 @@ def parse_log(text, model):
             gpu = m.group(1).split(" | ")[1] if " | " in m.group(1) else m.group(1)
         m = BEGIN.match(line)
         if m:
-            span = [program_name(m.group(1), m.group(3))]
             tier = m.group(4)
+            span = [(program_name(m.group(1), m.group(3)), tier)]
             tiers[span[0]] = tier
             if span[0] not in order:
                 order.append(span[0])
             continue
         m = PROBE.match(line)
         if m:
-            span = ["sky", "sky sun"] if m.group(1) == "sky" else [m.group(1)]
+            span = [("sky", tier), ("sky sun", tier)] if m.group(1) == "sky" else \
+                [(m.group(1), tier)]
             continue
         m = STATS.match(line)
         if m and span:
@@ -148,7 +150,7 @@ def parse_log(text, model):
             f = st.get(stage)
             if stage in ("binning", "varying") and f is None:
                 continue
-            records.append(dict(gpu=gpu, model=model["name"], tier=tiers.get(name), program=name,
+            records.append(dict(gpu=gpu, model=model["name"], tier=tiers.get(name), program=name[0],
                                 stage=stage, probed=ok is not None, compiled=bool(ok),
                                 instructions=f["n"] if f else None,
                                 limit=model["limits"].get(stage),

@@ -25,7 +25,10 @@
 #include "shader.h"
 #include "sky.h"
 #include "tonemap.h"
+#include "vshade.h"
 #include "whitecap.h"
+#include "camera.h"
+#include "grid.h"
 #include "frame/frame_util.h"
 
 #define W 64
@@ -55,37 +58,70 @@ struct fn_tex {
     float scale[4];
 };
 
+/* A program of test_glsl's at tier, its uniforms' locations in loc. */
+static void fn_program(int tier, const char *vs, const char *fs, const char *defines,
+                       const char *const *names, int count, const struct shader_attrib *attribs,
+                       int nattr, struct gpu *gpu, struct shader_program *prog, GLint *loc)
+{
+    struct swell_err err = { 0 };
+    if (gpu_init(gpu, tier, 0, &err))
+        fail_msg("gpu_init: %s", err.msg);
+    struct shader_desc d = { .dir = g_dir, .vs_file = vs, .fs_file = fs, .caps = &gpu->caps,
+                             .uniform_names = names, .uniform_count = count,
+                             .uniform_locations = loc, .attribs = attribs, .attrib_count = nattr,
+                             .defines = defines };
+    if (shader_program_build(&d, prog, &err))
+        fail_msg("%s at %s: %s", fs, gpu_tier_name(tier), err.msg);
+}
+
+static void fn_frame_begin(const struct shader_program *prog)
+{
+    struct swell_err err = { 0 };
+    if (g_ph.be->begin_frame(g_ph.p, &err))
+        fail_msg("begin_frame: %s", err.msg);
+    glViewport(0, 0, W, H);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glUseProgram(prog->program);
+}
+
+/* The frame's 16-bit values: out[y * W + x] at pixel (x, y), y counted from the bottom as
+ * gl_FragCoord; covered[] (or NULL): whether the pixel was drawn (alpha 255). */
+static void fn_frame_read(double *out, int *covered)
+{
+    struct swell_err err = { 0 };
+    static uint8_t rgba[W * H * 4];
+    assert_int_equal(glGetError(), GL_NO_ERROR);
+    if (g_ph.be->present(g_ph.p, &err) || g_ph.be->read_rgba(g_ph.p, rgba, &err))
+        fail_msg("read back: %s", err.msg);
+    for (int r = 0; r < H; r++)   /* read_rgba: top row first */
+        for (int x = 0; x < W; x++) {
+            const uint8_t *p = rgba + 4 * ((size_t)r * W + x);
+            out[(H - 1 - r) * W + x] = (p[0] + p[1] / 255.0) / 255.0;
+            if (covered)
+                covered[(H - 1 - r) * W + x] = p[3] == 255;
+        }
+}
+
 /* Render fs (with defines, or NULL) over W x H at tier with uniform fn_in = in and, unless tx is
- * NULL, its texture; out[y * W + x] = the value at pixel (x, y), y counted from the bottom as
- * gl_FragCoord. */
+ * NULL, its texture; out as fn_frame_read. */
 static void render_fn(int tier, const char *fs, const char *defines, const float in[4],
                       const struct fn_tex *tx, double *out)
 {
     struct gpu gpu;
-    struct swell_err err = { 0 };
     struct shader_program prog = { 0 };
     static const char *const names[] = { "fn_in", "fn_tex", "fn_scale" };
     static const struct shader_attrib attribs[] = { { "a_pos", 0 } };
     GLint loc[3];
-    if (gpu_init(&gpu, tier, 0, &err))
-        fail_msg("gpu_init: %s", err.msg);
-    struct shader_desc d = { .dir = g_dir, .vs_file = "fn.vert", .fs_file = fs,
-                             .caps = &gpu.caps, .uniform_names = names, .uniform_count = 3,
-                             .uniform_locations = loc, .attribs = attribs, .attrib_count = 1,
-                             .defines = defines };
-    if (shader_program_build(&d, &prog, &err))
-        fail_msg("%s at %s: %s", fs, gpu_tier_name(tier), err.msg);
-    if (g_ph.be->begin_frame(g_ph.p, &err))
-        fail_msg("begin_frame: %s", err.msg);
+    fn_program(tier, "fn.vert", fs, defines, names, 3, attribs, 1, &gpu, &prog, loc);
+    fn_frame_begin(&prog);
     static const float tri[6] = { -1.0f, -1.0f, 3.0f, -1.0f, -1.0f, 3.0f };
     GLuint vbo;
     glGenBuffers(1, &vbo);
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
     glBufferData(GL_ARRAY_BUFFER, sizeof tri, tri, GL_STATIC_DRAW);
-    glViewport(0, 0, W, H);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
-    glUseProgram(prog.program);
     glUniform4fv(loc[0], 1, in);
     GLuint tex = 0;
     if (tx) {
@@ -110,15 +146,7 @@ static void render_fn(int tier, const char *fs, const char *defines, const float
     glDeleteBuffers(1, &vbo);
     if (tex)
         glDeleteTextures(1, &tex);
-    assert_int_equal(glGetError(), GL_NO_ERROR);
-    static uint8_t rgba[W * H * 4];
-    if (g_ph.be->present(g_ph.p, &err) || g_ph.be->read_rgba(g_ph.p, rgba, &err))
-        fail_msg("read back: %s", err.msg);
-    for (int r = 0; r < H; r++)   /* read_rgba: top row first */
-        for (int x = 0; x < W; x++) {
-            const uint8_t *p = rgba + 4 * ((size_t)r * W + x);
-            out[(H - 1 - r) * W + x] = (p[0] + p[1] / 255.0) / 255.0;
-        }
+    fn_frame_read(out, NULL);
     shader_program_destroy(&prog);
     gpu_shutdown(&gpu);
 }
@@ -328,6 +356,175 @@ static void test_sky_lookup(void **state)
     sky_destroy(&sky);
 }
 
+/* vshade.c's terms of a vertex (the CPU's, for gles2-min) against vterms.glsl's vertex_terms
+ * (ocean.vert's on the tiers with vertex texture fetch), the GPU's in highp, at 2048 vertices
+ * from 2 m to 30 km around a camera 10 m up (positions displaced up to 1.5 m, on the curved
+ * sea: the farthest have normals facing away, reflected), both qualities: every term within
+ * 2e-3 of its range over the vertices (the Ross factor compared in log2; measured: 3.6e-4 for
+ * the Fresnel uv's derivatives, llvmpipe's asin against libm's, 1e-5 for the rest, the 16-bit
+ * read), and every term varies over them. Dropping the sphere's slope from vshade.c's s0
+ * fails it (0.24). */
+#define VT_TERMS 22
+static const char *const vt_names[VT_TERMS] = {
+    "fresnel u", "fresnel v", "sky u", "sky v", "d fresnel u/dsx", "d fresnel v/dsx",
+    "d sky u/dsx", "d sky v/dsx", "d fresnel u/dsy", "d fresnel v/dsy", "d sky u/dsy",
+    "d sky v/dsy", "zeta x", "zeta y", "log2 ross", "eq. 25 wx", "lod_foot", "sky lod",
+    "haze T green", "fog r", "fog g", "fog b"
+};
+/* term t's offset in vshade.h's layout */
+static int vt_offset(int t)
+{
+    return t < 16 ? VSHADE_LIN + t
+         : t < 17 ? VSHADE_POS + 3
+         : t < 19 ? VSHADE_GEO + 2 + (t - 17)
+         : VSHADE_FOG + (t - 19);
+}
+
+static double vt_value(const float *o, int t)
+{
+    double x = o[vt_offset(t)];
+    return t == 14 ? log2(fmax(x, 1e-12)) : x;
+}
+
+static void test_vshade(void **state)
+{
+    (void)state;
+    enum { N = W * H };
+    const float alt = 10.0f, deg = (float)(M_PI / 180.0);
+    struct vshade_frame f = {
+        .lin_s0 = { 0.01f, -0.005f, 0.12f }, .total_var = { 0.012f, 0.008f },
+        .sun_dir = { cosf(30 * deg) * cosf(20 * deg), cosf(30 * deg) * sinf(20 * deg),
+                     sinf(30 * deg) },
+        .fresnel_uv_scale = { 1.0f, 0.5f }, .sky_map_size = 256.0f,
+        .lod_frame = { alt * alt, log2f(1e-3f / alt) },
+        .haze_tau = { 0.12f, 0.25f, 0.5f }, .haze_frame = { 1.0f / 8000.0f, 0.76f },
+        .haze_ray = { 0.3f, 0.5f, 0.9f }, .haze_mie = { 0.2f, 0.18f, 0.15f },
+    };
+    static float grid[N * GRID_FLOATS], cpu[N * VSHADE_FLOATS], vbuf[N * 7];
+    uint32_t seed = 12345u;
+#define VT_RAND() ((seed = seed * 1664525u + 1013904223u) / 4294967296.0f)
+    memset(grid, 0, sizeof grid);
+    for (int i = 0; i < N; i++) {
+        float d = 2.0f * powf(15000.0f, VT_RAND()), az = 2.0f * (float)M_PI * VT_RAND();
+        float *g = grid + (size_t)i * GRID_FLOATS, *v = vbuf + (size_t)i * 7;
+        double r2 = (double)d * d;
+        g[GRID_A_REST] = d * cosf(az);
+        g[GRID_A_REST + 1] = d * sinf(az);
+        g[GRID_A_POS] = g[GRID_A_REST] + 3.0f * (VT_RAND() - 0.5f);
+        g[GRID_A_POS + 1] = g[GRID_A_REST + 1] + 3.0f * (VT_RAND() - 0.5f);
+        g[GRID_A_POS + 2] = 3.0f * (VT_RAND() - 0.5f) - alt -
+            (float)(r2 / (EARTH_RADIUS_M + sqrt(EARTH_RADIUS_M * EARTH_RADIUS_M - r2)));
+        memcpy(v, g + GRID_A_POS, 3 * sizeof(float));
+        memcpy(v + 3, g + GRID_A_REST, 2 * sizeof(float));
+        v[5] = (float)(i % W);
+        v[6] = (float)(i / W);
+    }
+#undef VT_RAND
+    static const char *const names[] = {
+        "fn_mask", "fn_range", "fn_size", "fn_log", "fresnel_uv_scale", "lin_s0", "lod_frame",
+        "sun_dir_world", "haze_tau", "haze_frame", "total_var", "sky_map_size", "haze_ray",
+        "haze_mie"
+    };
+    enum { NU = sizeof names / sizeof names[0] };
+    static const struct shader_attrib attribs[] = { { "a_p", 0 }, { "a_rest", 1 }, { "a_px", 2 } };
+    static const int tiers[] = { TIER_GLES2_MIN, -1 };
+    static double got[W * H];
+    static int covered[W * H];
+    for (int q = 0; q < 2; q++) {
+        f.fog = q == 0;
+        vshade_fill(&f, grid, N, cpu);
+        int nterms = q == 0 ? VT_TERMS : VT_TERMS - 3;
+        for (size_t ti = 0; ti < sizeof tiers / sizeof tiers[0]; ti++) {
+            struct gpu gpu;
+            struct shader_program prog = { 0 };
+            GLint loc[NU];
+            fn_program(tiers[ti], "fn_vterms.vert", "fn_vterms.frag",
+                       q == 0 ? NULL : "QUALITY_HIGH", names, NU, attribs, 3, &gpu, &prog, loc);
+            GLuint vbo;
+            glGenBuffers(1, &vbo);
+            glBindBuffer(GL_ARRAY_BUFFER, vbo);
+            glBufferData(GL_ARRAY_BUFFER, sizeof vbuf, vbuf, GL_STATIC_DRAW);
+            double worst_all = 0.0;
+            int worst_t = 0;
+            for (int t = 0; t < nterms; t++) {
+                double lo = 1e30, hi = -1e30;
+                for (int i = 0; i < N; i++) {
+                    double x = vt_value(cpu + (size_t)i * VSHADE_FLOATS, t);
+                    lo = fmin(lo, x);
+                    hi = fmax(hi, x);
+                }
+                double pad = 0.01 * (hi - lo) + 1e-6;
+                lo -= pad;
+                hi += pad;
+                float mask[24] = { 0 };
+                mask[t < 19 ? t : t + 1] = 1.0f;   /* fn_vterms.vert's order */
+                const float range[2] = { (float)lo, (float)(1.0 / (hi - lo)) };
+                const float size[2] = { (float)W, (float)H };
+                fn_frame_begin(&prog);
+                glUniform4fv(loc[0], 6, mask);
+                glUniform2fv(loc[1], 1, range);
+                glUniform2fv(loc[2], 1, size);
+                glUniform1f(loc[3], t == 14 ? 1.0f : 0.0f);
+                glUniform2fv(loc[4], 1, f.fresnel_uv_scale);
+                glUniform3fv(loc[5], 1, f.lin_s0);
+                glUniform2fv(loc[6], 1, f.lod_frame);
+                glUniform3fv(loc[7], 1, f.sun_dir);
+                glUniform3fv(loc[8], 1, f.haze_tau);
+                glUniform2fv(loc[9], 1, f.haze_frame);
+                glUniform2fv(loc[10], 1, f.total_var);
+                glUniform1f(loc[11], f.sky_map_size);
+                if (q == 0) {
+                    glUniform3fv(loc[12], 1, f.haze_ray);
+                    glUniform3fv(loc[13], 1, f.haze_mie);
+                }
+                for (GLuint a = 0; a < 3; a++)
+                    glEnableVertexAttribArray(a);
+                glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float), (void *)0);
+                glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
+                                      (void *)(3 * sizeof(float)));
+                glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
+                                      (void *)(5 * sizeof(float)));
+                glDrawArrays(GL_POINTS, 0, N);
+                for (GLuint a = 0; a < 3; a++)
+                    glDisableVertexAttribArray(a);
+                fn_frame_read(got, covered);
+                double worst = 0.0;
+                int wi = 0;
+                for (int i = 0; i < N; i++) {
+                    assert_true(covered[i]);
+                    double want = vt_value(cpu + (size_t)i * VSHADE_FLOATS, t);
+                    double e = fabs(lo + got[i] * (hi - lo) - want) / (hi - lo);
+                    if (e > worst) {
+                        worst = e;
+                        wi = i;
+                    }
+                }
+                const float *gw = grid + (size_t)wi * GRID_FLOATS;
+                if (worst >= 2e-3)
+                    print_message("vshade %s at %s, %s: worst %.2e of the range %.3g..%.3g "
+                                  "at %.0f m\n", q == 0 ? "low" : "high",
+                                  tiers[ti] < 0 ? "the best tier" : gpu_tier_name(tiers[ti]),
+                                  vt_names[t], worst, lo + pad, hi - pad,
+                                  hypot(gw[GRID_A_REST], gw[GRID_A_REST + 1]));
+                if (worst > worst_all) {
+                    worst_all = worst;
+                    worst_t = t;
+                }
+                assert_true(hi - lo > 1e-3 * (fabs(hi) + fabs(lo)));   /* the term varies */
+            }
+            print_message("vshade %s at %s: worst term %s, %.2e of its range\n",
+                          q == 0 ? "low" : "high",
+                          tiers[ti] < 0 ? "the best tier" : gpu_tier_name(tiers[ti]),
+                          vt_names[worst_t], worst_all);
+            assert_true(worst_all < 2e-3);
+            glBindBuffer(GL_ARRAY_BUFFER, 0);
+            glDeleteBuffers(1, &vbo);
+            shader_program_destroy(&prog);
+            gpu_shutdown(&gpu);
+        }
+    }
+}
+
 int main(void)
 {
     int open_rc = frame_open("test_glsl", W, H, &g_ph);
@@ -345,6 +542,7 @@ int main(void)
         cmocka_unit_test(test_whitecap_cover),
         cmocka_unit_test(test_ross_lambda),
         cmocka_unit_test(test_sky_lookup),
+        cmocka_unit_test(test_vshade),
     };
     copy_file("shaders_gles", "common.glsl");
     copy_file("tests/glsl", "fn.vert");
@@ -353,10 +551,14 @@ int main(void)
     copy_file("tests/glsl", "fn_whitecap_cover.frag");
     copy_file("tests/glsl", "fn_ross_lambda.frag");
     copy_file("tests/glsl", "fn_sky_lookup.frag");
+    copy_file("shaders_gles", "vterms.glsl");
+    copy_file("tests/glsl", "fn_vterms.vert");
+    copy_file("tests/glsl", "fn_vterms.frag");
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     static const char *const copies[] = { "common.glsl", "fn.vert", "fn_fresnel_eff.frag",
                                           "fn_tone_map.frag", "fn_whitecap_cover.frag",
-                                          "fn_ross_lambda.frag", "fn_sky_lookup.frag" };
+                                          "fn_ross_lambda.frag", "fn_sky_lookup.frag",
+                                          "vterms.glsl", "fn_vterms.vert", "fn_vterms.frag" };
     for (size_t k = 0; k < sizeof copies / sizeof copies[0]; k++) {
         char path[600];
         if (snprintf(path, sizeof path, "%s/%s", g_dir, copies[k]) < (int)sizeof path)
