@@ -243,6 +243,8 @@ struct renderer {
     int probing;                      /* 1: no sky, cleared to 0 (the probe) */
     int probe_executes;               /* the device drew the probe's clear (not a noop shim) */
     int refused;                      /* variants the probe found refused */
+    int detile_refused;               /* > 0: --detile auto turned the lattice off, with which
+                                       * the probe found this many refused (renderer_create) */
 };
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
@@ -277,6 +279,31 @@ const char *detile_mode_name(int m) { return enum_name(detile_names, DETILE_MODE
 int detile_mode_from_name(const char *name)
 {
     return enum_from_name(detile_names, DETILE_MODE_COUNT, name);
+}
+
+/* debug_variants' colours: variant v as red 10 (v + 1) (at most 250), green and blue 0, over
+ * a white clear; drawn by blending (GL_ZERO, GL_CONSTANT_COLOR), so the programs are the ones
+ * the frame runs and a pixel drawn twice comes out as the product of two colours. */
+static void variant_colour(int v, float rgba[4])
+{
+    rgba[0] = (float)(10 * (v + 1)) / 255.0f;
+    rgba[1] = rgba[2] = 0.0f;
+    rgba[3] = 1.0f;
+}
+
+int renderer_pixel_variant(const uint8_t rgba[4])
+{
+    if (rgba[0] == 255 && rgba[1] == 255 && rgba[2] == 255)
+        return RENDERER_PIXEL_SKY;
+    if (rgba[1] || rgba[2] || rgba[0] % 10 || rgba[0] == 0 || rgba[0] / 10 > OCEAN_VARIANTS)
+        return RENDERER_PIXEL_MIXED;
+    return rgba[0] / 10 - 1;
+}
+
+void renderer_program_name(const struct renderer *r, int v, char *buf, size_t size)
+{
+    snprintf(buf, size, "ocean k=%d kw=%d %s%s", VARIANT_K(v), VARIANT_KW(v),
+             render_quality_name(r->d.quality), renderer_detile(r) ? "" : " no-detile");
 }
 
 int renderer_detile(const struct renderer *r)
@@ -1092,8 +1119,7 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
             if (!r->ocean[v].program)
                 continue;
             char text[2048], name[64];
-            snprintf(name, sizeof name, "ocean k=%d kw=%d %s", k, kw,
-                     render_quality_name(r->d.quality));
+            renderer_program_name(r, v, name, sizeof name);
             r->force_variant = v;
             int rc = probe_draw(r, &cam, label ? name : NULL, text, sizeof text);
             int covered = 1;
@@ -1104,8 +1130,10 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                     n += px[4 * i + 3] > 0;
                 covered = n > PROBE_SIZE * PROBE_SIZE / 2;
             }
+            unsigned refuse = r->d.probe_refuse |
+                              (renderer_detile(r) ? r->d.probe_refuse_detile : 0u);
             r->variant_ok[v] = !rc && !refused_in(text) && covered &&
-                               !((r->d.probe_refuse >> (v & 31)) & 1u);
+                               !((refuse >> (v & 31)) & 1u);
             if (label)
                 fprintf(stderr, "swell-program: end %s\n", r->variant_ok[v] ? "ok" : "refused");
         }
@@ -1163,13 +1191,15 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                                        VARIANT_K(use), VARIANT_KW(use));
         }
     if (r->refused)
-        fprintf(stderr, "swell: the driver (%s) refused %d ocean program(s); their rows are "
+        fprintf(stderr, "swell: the driver (%s) refused %d ocean program(s)%s; their rows are "
                 "drawn fetching fewer (or more) patterns/whitecap tables:%s\n",
-                (const char *)glGetString(GL_RENDERER), r->refused, list);
+                (const char *)glGetString(GL_RENDERER), r->refused,
+                renderer_detile(r) ? "" : " (no-detile)", list);
     return gpu_check("renderer: start-up probe", err);
 }
 
-int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
+static int create_once(const struct renderer_desc *desc, struct renderer **out,
+                       struct swell_err *err)
 {
     struct renderer *r;
     struct grid_desc gd = { 0 };
@@ -1209,6 +1239,36 @@ fail:
     swell_err_context(err, "renderer_create");
     renderer_destroy(r);
     return rc;
+}
+
+/* --detile auto where the driver refuses programs with the lattice (issue 15: Vivante GC2000
+ * runs 3 of high quality's 12 with it, all 12 without; VideoCore IV 7 and 12): built again
+ * without it, and kept if the driver then refuses fewer. A pattern that repeats on its tile
+ * is the lesser loss than the patterns a refused program's rows go without. */
+int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
+{
+    int rc = create_once(desc, out, err);
+    if (rc || desc->detile != DETILE_MODE_AUTO || !(*out)->refused || !renderer_detile(*out))
+        return rc;
+    int with = (*out)->refused;
+    struct renderer_desc off = *desc;
+    off.detile = DETILE_MODE_OFF;
+    renderer_destroy(*out);
+    *out = NULL;
+    rc = create_once(&off, out, err);
+    if (!rc && (*out)->refused < with) {
+        (*out)->detile_refused = with;
+        fprintf(stderr, "swell: --detile auto: without the random offsets the driver refuses %d "
+                "ocean program(s), not %d; each pattern now repeats on its tile\n",
+                (*out)->refused, with);
+        return 0;
+    }
+    if (!rc)
+        renderer_destroy(*out);
+    *out = NULL;
+    if (err)
+        memset(err, 0, sizeof(*err));
+    return create_once(desc, out, err);   /* no better without: as it was */
 }
 
 int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err)
@@ -1893,6 +1953,11 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             set_slot_lods(r, run_k, run_kw, run_key, alt, pix,
                           log2f(row_footprint(run_d2_far, alt, pix) * RUN_LOD_ROW_MEAN),
                           log2f(row_footprint(run_d2, alt, pix) * RUN_LOD_ROW_MEAN));
+            if (r->d.debug_variants) {
+                float c[4];
+                variant_colour(VARIANT(run_k, run_kw), c);
+                glBlendColor(c[0], c[1], c[2], c[3]);
+            }
             glDrawElements(GL_TRIANGLES, run_count, GL_UNSIGNED_SHORT,
                            (const void *)((size_t)run_first * sizeof(uint16_t)));
             r->draws++;
@@ -1951,13 +2016,15 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
     glDepthMask(GL_TRUE);
     if (r->probing)
         glClearColor(0.0f, 0.0f, 0.0f, 0.0f);   /* the probe counts what the sea writes */
+    else if (r->d.debug_variants)
+        glClearColor(1.0f, 1.0f, 1.0f, 1.0f);   /* variant_colour's white */
     else if (r->d.debug_uncovered)
         glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug */
     else
         glClearColor(0.02f, 0.05f, 0.07f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
     int rc;
-    if (!r->d.no_sky && r->probing != 1 &&
+    if (!r->d.no_sky && !r->d.debug_variants && r->probing != 1 &&
         (rc = draw_sky(r, cam, world_to_clip, width, height, err)))
         return rc;
     if (nidx > 0 && r->probing != 2) {
@@ -1981,7 +2048,12 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
             }
         }
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
+        if (r->d.debug_variants && !r->probing) {
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ZERO, GL_CONSTANT_COLOR);
+        }
         draw_runs(r, cam, world_to_clip, height);
+        glDisable(GL_BLEND);
         for (int a = 0; a < A_COUNT; a++)
             glDisableVertexAttribArray((GLuint)a);
         glDisable(GL_DEPTH_TEST);
@@ -2031,8 +2103,10 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         r->run_lod ? "one level per run, by binding that level's own texture (software "
                      "rasteriser: per-pixel LOD is its slow path)"
                    : "per-pixel LOD",
-        !renderer_detile(r) ? "each pattern read once: it repeats on its tile (--detile off; "
-                              "auto in low quality)"
+        r->detile_refused ? "each pattern read once: it repeats on its tile (--detile auto: "
+                            "the driver refused more programs with the random offsets)"
+        : !renderer_detile(r) ? "each pattern read once: it repeats on its tile (--detile off; "
+                                "auto in low quality)"
                             : "each pattern read at three random offsets blended over a lattice of "
                          "half-tiles (Heitz & Neyret 2018, detile.h)",
         r->gpu->caps.tier == TIER_GLES2_MIN ? "mediump (gles2-min)"

@@ -8,6 +8,7 @@
 #define SWELL_RENDERER_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "camera.h"
 #include "err.h"
 #include "gpu.h"
@@ -17,8 +18,9 @@ enum render_quality { QUALITY_HIGH = 0, QUALITY_LOW, QUALITY_COUNT };
 enum geometry_kind { GEOMETRY_GRID = 0, GEOMETRY_PATCHES, GEOMETRY_COUNT };
 /* The lattice of random offsets that keeps each pattern from repeating on its tile (detile.h):
  * AUTO is ON in high quality and OFF in low (Hu's single pass for the weakest GPUs, where the
- * lattice would cost 2-3.5x the frame on llvmpipe; README); OFF reads each pattern once, at no
- * offset, so its tiles repeat. */
+ * lattice would cost 2-3.5x the frame on llvmpipe; README), and OFF in high quality too where
+ * the driver refuses more of its programs with the lattice than without (renderer_create);
+ * OFF reads each pattern once, at no offset, so its tiles repeat. */
 enum detile_mode { DETILE_MODE_AUTO = 0, DETILE_MODE_ON, DETILE_MODE_OFF, DETILE_MODE_COUNT };
 
 struct renderer_desc {
@@ -51,13 +53,25 @@ struct renderer_desc {
     unsigned probe_refuse;              /* tests: bit VARIANT(k, kw) = k * 5 + kw set: the
                                          * start-up probe takes that ocean variant as refused
                                          * by the driver (renderer.c probe_programs) */
+    unsigned probe_refuse_detile;       /* tests: the same for the programs built with the
+                                         * lattice of random offsets only (GC2000's case) */
     int detile;                         /* enum detile_mode (swell --detile); default AUTO.
                                          * The CPU query (sea.h) takes renderer_detile's flag */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
                                          * the sea, so a pixel neither covers shows (swell
                                          * --debug uncovered, the frame tests); default 0: a
                                          * dark sea colour */
+    int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
+                                         * naming the ocean program it is drawn with, no sky
+                                         * (white): the screen's share of each program
+                                         * (renderer_pixel_variant; swell --debug variants,
+                                         * tools/devices.py's cost model) */
 };
+
+/* A pixel of a debug_variants frame (RGBA8): the ocean program it was drawn with, as k * 5 + kw
+ * (k pattern and kw whitecap fetches, the probe's "ocean k=K kw=KW" names), or one of these. */
+enum { RENDERER_PIXEL_SKY = -1, RENDERER_PIXEL_MIXED = -2 };
+int renderer_pixel_variant(const uint8_t rgba[4]);
 
 struct renderer_stats {
     uint64_t gpu_bytes;                 /* accounted GPU bytes held by the renderer */
@@ -93,6 +107,9 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out);
 /* 1 when the renderer reads the patterns through the lattice (desc detile resolved): the flag
  * sea.h's query takes to give the surface this renderer draws. */
 int  renderer_detile(const struct renderer *r);
+/* Ocean program v's name (k * 5 + kw, renderer_pixel_variant): "ocean k=K kw=KW QUALITY",
+ * " no-detile" appended without the lattice; the start-up probe's labels, swell's shares. */
+void renderer_program_name(const struct renderer *r, int v, char *buf, size_t size);
 /* One line per choice made (tier, geometry path, texture path, shading) into buf. */
 void renderer_describe(const struct renderer *r, char *buf, size_t size);
 void renderer_destroy(struct renderer *r);

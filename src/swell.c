@@ -45,6 +45,7 @@ struct options {
     int quality, geometry, tier;
     int pixel_lod;              /* --lod pixel */
     int debug_uncovered;        /* --debug uncovered */
+    int debug_variants;         /* --debug variants */
     int detile;                 /* --detile: enum detile_mode */
     int verbose;
     int bench;                  /* --bench: time frames against the baseline quad */
@@ -109,6 +110,9 @@ static void usage(FILE *f)
 "  --debug uncovered clear to magenta (255, 0, 255) before the sky and the sea are drawn,\n"
 "                    so a pixel neither covers shows; the camera is kept 0.3 m above the\n"
 "                    sea surface under it in every mode (no view from under the water)\n"
+"  --debug variants  draw each run of sea rows in a flat colour naming its shader program,\n"
+"                    no sky, and print each frame's share of the screen per program\n"
+"                    (tools/devices.py's cost model)\n"
 "  --verbose         print the chosen device, mode, EGL config and per-frame stats\n"
 "  --help            this text\n"
 "  --version         print the version\n"
@@ -305,9 +309,11 @@ static int parse_args(int argc, char **argv, struct options *o)
         } else if (!strcmp(a, "--debug")) {
             if (!strcmp(v, "uncovered"))
                 o->debug_uncovered = 1;
+            else if (!strcmp(v, "variants"))
+                o->debug_variants = 1;
             else
-                r = swell_fail(&err, SWELL_E_ARG, "--debug: '%s' is not uncovered (the only "
-                               "debug view)", v);
+                r = swell_fail(&err, SWELL_E_ARG, "--debug: '%s' is neither uncovered nor "
+                               "variants (the debug views)", v);
         } else if (!strcmp(a, "--warmup")) {
             r = parse_int(a, v, 0, 100000, &o->warmup, &err);
         } else if (!strcmp(a, "--results")) {
@@ -377,6 +383,27 @@ static int load_tables(struct options *o, struct swell_tables *t, struct swell_e
 }
 
 /* Frame loop: everything it needs exists already; it allocates nothing but the PNG path. */
+/* --debug variants: the frame's share of the screen per ocean program (renderer.h
+ * renderer_pixel_variant), in the probe's names, on one line. */
+static void print_variant_shares(const struct renderer *r, int frame, const uint8_t *rgba, int w,
+                                 int h)
+{
+    enum { NV = (SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1) };
+    size_t count[NV + 2] = { 0 }, n = (size_t)w * (size_t)h;
+    for (size_t i = 0; i < n; i++) {
+        int v = renderer_pixel_variant(rgba + 4 * i);
+        count[v == RENDERER_PIXEL_SKY ? NV : v == RENDERER_PIXEL_MIXED ? NV + 1 : v]++;
+    }
+    printf("swell: frame %d: screen share: sky %.4f", frame, (double)count[NV] / (double)n);
+    for (int v = 0; v < NV; v++)
+        if (count[v]) {
+            char name[64];
+            renderer_program_name(r, v, name, sizeof name);
+            printf("; %s %.4f", name, (double)count[v] / (double)n);
+        }
+    printf("; mixed %.4f\n", (double)count[NV + 1] / (double)n);
+}
+
 static int run_frames(const struct options *o, struct platform_handle *ph, struct renderer *r,
                       int is_kms, struct swell_err *err)
 {
@@ -395,7 +422,7 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
                           "rendered (e.g. out/frame%%04d.png)", o->out,
                           frames ? "several" : "unlimited");
     uint8_t *rgba = NULL;
-    if (o->out || is_kms) {   /* KMS: screenshots on a key press; never allocate per frame */
+    if (o->out || is_kms || o->debug_variants) {   /* KMS: screenshots on a key press */
         rgba = malloc((size_t)w * (size_t)h * 4);
         if (!rgba)
             return swell_fail(err, SWELL_E_NOMEM, "no memory for a %dx%d read-back", w, h);
@@ -463,6 +490,8 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
                 printf("swell: frame %d: camera drawn %.2f m higher, %.1f m above the sea "
                        "surface under it\n", i, st.camera_raise_m, (double)CAMERA_CLEARANCE_M);
         }
+        if (!rc && o->debug_variants && !(rc = ph->be->read_rgba(ph->p, rgba, err)))
+            print_variant_shares(r, i, rgba, w, h);
         if (!rc && o->out) {
             char path[MAX_PATH_LEN];
             snprintf(path, sizeof path, o->out, i);
@@ -582,6 +611,7 @@ int main(int argc, char **argv)
         .tables = &tables, .gpu = &gpu, .quality = o.quality, .geometry = o.geometry,
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
+        .debug_variants = o.debug_variants,
         .detile = o.detile,
     };
     rc = renderer_create(&rd, &r, &err);

@@ -25,30 +25,75 @@ import sys
 # print statistics, and the hard limits known per stage (instructions; None: none known).
 MODELS = [
     dict(name="Mali-450", driver="lima", shim="lima", env={"LIMA_DEBUG": "shaderdb"},
-         limits={"vertex": 512}),
+         limits={"vertex": 512}, cost="inst"),
     dict(name="VideoCore IV", driver="vc4", shim="vc4", env={"VC4_DEBUG": "shaderdb"},
-         limits={}, fs_threads=2),
+         limits={}, fs_threads=2, cost="estimated-cycles"),
     dict(name="VideoCore VI", driver="v3d", shim="v3d", env={"V3D_DEBUG": "shaderdb"},
-         limits={}),
+         limits={}, cost="inst-and-stalls"),
     dict(name="Mali-G31", driver="panfrost", shim="panfrost",
-         env={"PAN_GPU_ID": "0x7093", "BIFROST_MESA_DEBUG": "shaderdb"}, limits={}),
+         env={"PAN_GPU_ID": "0x7093", "BIFROST_MESA_DEBUG": "shaderdb"}, limits={},
+         cost="tuples"),
     dict(name="Mali-T860", driver="panfrost", shim="panfrost",
-         env={"PAN_GPU_ID": "0x860", "MIDGARD_MESA_DEBUG": "shaderdb"}, limits={}),
+         env={"PAN_GPU_ID": "0x860", "MIDGARD_MESA_DEBUG": "shaderdb"}, limits={},
+         cost="bundles"),
     dict(name="Adreno 307", driver="msm", shim="freedreno",
-         env={"FD_GPU_ID": "307", "FD_MESA_DEBUG": "shaderdb"}, limits={}),
+         env={"FD_GPU_ID": "307", "FD_MESA_DEBUG": "shaderdb"}, limits={}, cost="inst"),
     dict(name="Adreno 530", driver="msm", shim="freedreno",
-         env={"FD_GPU_ID": "530", "FD_MESA_DEBUG": "shaderdb"}, limits={}),
+         env={"FD_GPU_ID": "530", "FD_MESA_DEBUG": "shaderdb"}, limits={}, cost="inst"),
     dict(name="Adreno 630", driver="msm", shim="freedreno",
-         env={"FD_GPU_ID": "630", "FD_MESA_DEBUG": "shaderdb"}, limits={}),
+         env={"FD_GPU_ID": "630", "FD_MESA_DEBUG": "shaderdb"}, limits={}, cost="inst"),
     dict(name="GC2000", driver="etnaviv", shim="etnaviv",
          env={"ETNA_SHIM_GPU": "GC2000", "ETNA_MESA_DEBUG": "shaderdb"},
-         limits={"vertex": 256, "fragment": 256}, etna=True),
+         limits={"vertex": 256, "fragment": 256}, etna=True, cost="instructions"),
     dict(name="GC3000", driver="etnaviv", shim="etnaviv",
-         env={"ETNA_SHIM_GPU": "GC3000", "ETNA_MESA_DEBUG": "shaderdb"}, limits={}, etna=True),
+         env={"ETNA_SHIM_GPU": "GC3000", "ETNA_MESA_DEBUG": "shaderdb"}, limits={}, etna=True,
+         cost="instructions"),
     dict(name="GC7000L", driver="etnaviv", shim="etnaviv",
          env={"ETNA_SHIM_GPU": "GC7000L", "ETNA_MESA_DEBUG": "shaderdb"}, limits={},
-         etna=True),
+         etna=True, cost="instructions"),
 ]
+
+# The cost model (docs/devices.md states it): a board's fragment rate is its clock times the
+# pixel-cost units it retires per cycle (lanes) over the compiler's cost per pixel of the
+# program (the statistic named by the model's cost above: lima and ir3 instructions, vc4's
+# estimated cycles, v3d's instructions and stalls, Bifrost's tuples,
+# Midgard's bundles, etnaviv's instructions); a frame's time is the sum over programs of its
+# share of the screen (measured: swell --debug variants on llvmpipe, same tier, quality, size
+# and view) times the pixels times that cost, plus every grid vertex through the vertex
+# shader at vs_lanes. Clocks and lanes are the boards' published figures, assumed, not
+# measured: no GPU ran anything. Targets: issue 15 item 4.
+BOARDS = [
+    dict(board="Mali-400 MP2 (500 MHz)", model="Mali-450", clock=500e6, lanes=2, vs_lanes=1,
+         note="2 fragment processors, one instruction word a cycle each; one vertex processor "
+              "(lima compiles the Mali-400 and -450 ISA alike)",
+         targets={("high", "1280x720"): 30, ("low", "1920x1080"): 60}),
+    dict(board="Raspberry Pi 3, VideoCore IV (300 MHz)", model="VideoCore IV", clock=300e6,
+         lanes=48, vs_lanes=48, note="12 QPUs of 4 lanes (a 16-wide instruction in 4 cycles)",
+         targets={("high", "1280x720"): 30}),
+    dict(board="Raspberry Pi 4, VideoCore VI (500 MHz)", model="VideoCore VI", clock=500e6,
+         lanes=32, vs_lanes=32, note="8 QPUs of 4 lanes", targets={("high", "1920x1080"): 60}),
+    dict(board="Mali-G31 MP2 (650 MHz)", model="Mali-G31", clock=650e6, lanes=8, vs_lanes=8,
+         note="2 cores of one 4-lane execution engine, a tuple a lane a cycle (Mesa's Bifrost "
+              "'cycles' are normalised to a wider core, so its tuples are counted)",
+         targets={("high", "1280x720"): 60}),
+    dict(board="Mali-T860 MP4 (800 MHz, RK3399)", model="Mali-T860", clock=800e6, lanes=8,
+         vs_lanes=8, note="4 cores of 2 arithmetic pipes, a bundle a cycle each", targets={}),
+    dict(board="Adreno 307 (600 MHz)", model="Adreno 307", clock=600e6, lanes=32, vs_lanes=32,
+         note="32 ALU lanes (assumed, like the Adreno 306/308)", targets={}),
+    dict(board="Adreno 530 (624 MHz)", model="Adreno 530", clock=624e6, lanes=256,
+         vs_lanes=256, note="256 ALU lanes", targets={}),
+    dict(board="Adreno 630 (710 MHz)", model="Adreno 630", clock=710e6, lanes=512,
+         vs_lanes=512, note="512 ALU lanes", targets={}),
+    dict(board="i.MX6 Quad, GC2000 (594 MHz)", model="GC2000", clock=594e6, lanes=4,
+         vs_lanes=4, note="4 vec4 shader cores, one instruction a cycle each", targets={}),
+    dict(board="i.MX6 QuadPlus, GC3000 (720 MHz)", model="GC3000", clock=720e6, lanes=4,
+         vs_lanes=4, note="4 vec4 shader cores", targets={}),
+    dict(board="i.MX8M, GC7000L (800 MHz)", model="GC7000L", clock=800e6, lanes=4, vs_lanes=4,
+         note="4 vec4 shader cores (16 ALU lanes)", targets={}),
+]
+SIZES = ("1280x720", "1920x1080")
+VIEWS = [("default", []), ("surface", ["--path", "surface"]), ("1km", ["--path", "1km"]),
+         ("10km", ["--path", "10km"])]
 
 STAGES = {
     "MESA_SHADER_VERTEX": "vertex", "VERT": "vertex", "MESA_SHADER_POSITION": "vertex",
@@ -82,11 +127,13 @@ BEGIN = re.compile(r"^swell-program: begin (\S+) \+ (\S+) \[(.*)\] tier (\S+)$")
 
 
 def program_name(vs, defines):
-    """The probe's name for a build: 'ocean k=1 kw=0 high', 'sky', 'sky sun'."""
+    """The probe's name for a build: 'ocean k=1 kw=0 high', '... no-detile' without the
+    lattice (renderer.c renderer_program_name), 'sky', 'sky sun'."""
     d = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in defines.split())
     if vs.startswith("ocean"):
-        return "ocean k=%s kw=%s %s" % (d.get("FS_PATTERNS", "?"), d.get("FS_WHITECAPS", "?"),
-                                        "high" if "QUALITY_HIGH" in d else "low")
+        return "ocean k=%s kw=%s %s%s" % (d.get("FS_PATTERNS", "?"), d.get("FS_WHITECAPS", "?"),
+                                          "high" if "QUALITY_HIGH" in d else "low",
+                                          " no-detile" if "SWELL_NO_DETILE" in d else "")
     return "sky sun" if "SUN_DISC" in d else "sky"
 
 
@@ -126,6 +173,8 @@ def parse_log(text, model):
             if model.get("etna") and "instructions" in f:
                 n = f["instructions"] // 4   # etnaviv reports its code size in dwords
             f["n"] = n
+            c = f.get(model["cost"])
+            f["cost"] = (c // 4 if model.get("etna") else c) if c is not None else None
             prog = span[0] if len(span) == 1 else None
             for name in ([prog] if prog else span):
                 st = stats.setdefault(name, {})
@@ -156,7 +205,8 @@ def parse_log(text, model):
                                 limit=model["limits"].get(stage),
                                 spills=f.get("spills") if f else None,
                                 threads=f.get("threads") if f else None,
-                                cycles=(f.get("estimated-cycles", f.get("cycles")) if f else None)))
+                                cycles=(f.get("estimated-cycles", f.get("cycles")) if f else None),
+                                cost=f.get("cost") if f else None))
     return gpu, tier, records
 
 
@@ -174,6 +224,87 @@ def problems(rec, model):
     if want and rec["stage"] == "fragment" and rec["threads"] and rec["threads"] < want:
         out.append("%d thread(s), not %d" % (rec["threads"], want))
     return out
+
+
+SHARE = re.compile(r"^swell: frame \d+: screen share: (.*)$")
+USE = re.compile(r"refused \d+ ocean program\(s\)( \(no-detile\))?;[^:]*: "
+                 r"((?:\d+/\d+->\d+/\d+ ?)+)")
+
+
+def measure_shares(root, build, tables, tier, quality, detile, size, view, cache):
+    """The screen's share of each ocean program and of the sky in one frame of a view, drawn on
+    llvmpipe (the host's Mesa, not a shim: it draws) with swell --debug variants; and the grid's
+    vertex count."""
+    key = (tier, quality, detile, size, view[0])
+    if key in cache:
+        return cache[key]
+    cmd = [os.path.join(build, "swell"), "--platform", "surfaceless", "--tables", tables,
+           "--size", size, "--frames", "1", "--quality", quality, "--debug", "variants",
+           "--verbose"] + view[1] + ([] if detile else ["--detile", "off"])
+    if tier:
+        cmd += ["--tier", tier]
+    p = subprocess.run(cmd, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=300)
+    shares, verts = {}, None
+    for line in p.stdout.splitlines():
+        m = SHARE.match(line)
+        if m:
+            for part in m.group(1).split("; "):
+                name, val = part.rsplit(" ", 1)
+                shares[name] = float(val)
+        m = re.search(r"(\d+) vertices,", line)
+        if m:
+            verts = int(m.group(1))
+    if p.returncode != 0 or not shares:
+        sys.exit("devices: share run failed (%s): %s" % (" ".join(cmd), p.stdout[-400:]))
+    cache[key] = (shares, verts)
+    return cache[key]
+
+
+def drawn_as(name, use, have):
+    """The program a device draws program name's rows with: swell's fallback (use: 'k/kw' ->
+    'k/kw', printed at start-up) where it refused it; for a variant the device did not build
+    (fewer texture units: fewer whitecap tables), the one with the same slope fetches and the
+    most whitecap fetches it has, or its fallback."""
+    m = re.match(r"^ocean k=(\d+) kw=(\d+) (\S+)( no-detile)?$", name)
+    k, kw, q = int(m.group(1)), int(m.group(2)), m.group(3) + (m.group(4) or "")
+    for w in range(kw, -1, -1):
+        u = use.get("%d/%d" % (k, w))
+        c = "ocean k=%s kw=%s %s" % (tuple(u.split("/")) + (q,)) if u else \
+            "ocean k=%d kw=%d %s" % (k, w, q)
+        if c in have:
+            return c
+    return None
+
+
+def estimate(board, run, records, shares, verts, size):
+    """Frames per second by the cost model (BOARDS), or None where a program drawn has no cost
+    statistic; with the ms per frame of fragment and vertex work."""
+    cost = {}
+    for r in records:
+        if r["model"] == board["model"] and r["tier"] == run["tier"] and \
+                r["quality_asked"] == run["quality"] and r["tier_asked"] == run["tier_asked"] \
+                and r["compiled"]:
+            cost[(r["program"], r["stage"])] = r["cost"]
+    have = {p for (p, st) in cost if p.startswith("ocean")}
+    w, h = (int(x) for x in size.split("x"))
+    px, frag, vs = w * h, 0.0, 0.0
+    worst = 0
+    for name, share in shares.items():
+        if name == "mixed":
+            continue
+        prog = "sky" if name == "sky" else drawn_as(name, run["use"], have)
+        c = cost.get((prog, "fragment")) if prog else None
+        if c is None:
+            return None
+        frag += share * px * c
+        if prog != "sky":
+            vs = max(vs, cost.get((prog, "vertex")) or 0)
+            worst = max(worst, c)
+    frag += shares.get("mixed", 0.0) * px * worst   # drawn twice: at the costliest
+    t_frag = frag / (board["clock"] * board["lanes"])
+    t_vert = verts * vs / (board["clock"] * board["vs_lanes"])
+    return dict(fps=1.0 / (t_frag + t_vert), ms_fragment=1e3 * t_frag, ms_vertex=1e3 * t_vert)
 
 
 def run(args):
@@ -237,17 +368,42 @@ def run(args):
                 all_records += recs
                 m = re.findall(r"trying --quality (\S+)", text)
                 drew = "none" if rc != 0 else (m[-1] if m else quality)
+                # the build drawn: with or without the lattice (the retry of --detile auto),
+                # and its fallbacks
+                nodetile = any(l.startswith("tiles: each pattern read once")
+                               for l in text.splitlines())
+                use = [u[1] for u in USE.findall(text) if bool(u[0]) == nodetile]
+                use = dict(kv.split("->") for kv in use[-1].split()) if use else {}
                 runs.append(dict(model=model["name"], gpu=gpu, tier_asked=tier, tier=picked,
-                                 quality=quality, drew=drew, exit=rc,
+                                 quality=quality, drew=drew, exit=rc, use=use,
+                                 detile=not nodetile,
                                  programs=len({r["program"] for r in recs})))
                 if rc != 0:
                     failures.append("%s %s %s: swell exited %s (log %s.log)" %
                                     (model["name"], tier, quality, rc, tag))
                 print("devices: %-12s %-9s %-4s exit %s, %d records" %
                       (model["name"], tier, quality, rc, len(recs)), file=sys.stderr)
+    estimates, cache = [], {}
+    for board in BOARDS:
+        for rn in runs:
+            if rn["model"] != board["model"] or rn["exit"] != 0 or rn["drew"] != rn["quality"]:
+                continue
+            for size in SIZES:
+                for view in VIEWS:
+                    shares, verts = measure_shares(root, build, tables, rn["tier"],
+                                                   rn["quality"], rn["detile"], size, view,
+                                                   cache)
+                    e = estimate(board, rn, all_records, shares, verts, size)
+                    estimates.append(dict(board=board["board"], model=board["model"],
+                                          tier_asked=rn["tier_asked"], tier=rn["tier"],
+                                          quality=rn["quality"], size=size, view=view[0],
+                                          shares=shares, vertices=verts,
+                                          target_fps=board["targets"].get((rn["quality"], size)),
+                                          **(e or dict(fps=None))))
+        print("devices: estimated %s" % board["board"], file=sys.stderr)
     with open(os.path.join(out_dir, "results.json"), "w") as f:
-        json.dump(dict(runs=runs, records=all_records), f, indent=1)
-    write_doc(os.path.join(root, "docs", "devices.md"), runs, all_records)
+        json.dump(dict(runs=runs, records=all_records, estimates=estimates), f, indent=1)
+    write_doc(os.path.join(root, "docs", "devices.md"), runs, all_records, estimates)
     for line in failures:
         print("devices: FAIL " + line, file=sys.stderr)
     print("devices: %d runs, %d records, %d problems; build/devices/results.json, docs/devices.md"
@@ -255,16 +411,18 @@ def run(args):
     return 1 if failures else 0
 
 
-def write_doc(path, runs, records):
+def write_doc(path, runs, records, estimates):
     lines = ["# swell on the real GPUs' compilers", "",
              "Made by `make test-devices` (tools/devices.py): swell's start-up probe draws every "
              "ocean variant and the sky once under Mesa 22.3's own drivers for each GPU, run "
              "without the hardware through Mesa's noop drm-shim; the numbers are what each "
              "driver's compiler reports (instructions; spills; threads or cycles where it "
              "says). `ok` means the program compiled and the driver ran its draw; `refused`: "
-             "the driver said it cannot (swell then draws those rows with a variant fetching "
-             "fewer patterns, or falls back to the other quality). Frame rates are not "
-             "estimated yet.", ""]
+             "the driver said it cannot (swell then builds its programs again without the lattice "
+             "of random offsets if that makes the driver refuse fewer, the 'no-detile' rows; "
+             "draws a refused program's rows with a variant fetching fewer patterns; or falls "
+             "back to the other quality). Frame rates are estimated "
+             "from the compilers' statistics by the cost model below; no GPU ran anything.", ""]
     lines += ["## Runs", "", "| GPU | tier asked | tier | quality asked | drawn in | exit | programs |",
               "|---|---|---|---|---|---|---|"]
     for r in runs:
@@ -283,7 +441,7 @@ def write_doc(path, runs, records):
     for r in records:
         if not r["program"].startswith("ocean"):
             continue
-        key = (r["model"], r["tier"], r["program"].split()[-1])
+        key = (r["model"], r["tier"], " ".join(r["program"].split()[3:]))
         g = groups.setdefault(key, dict(run=set(), refused=set(), v=0, f=0, spill=set(),
                                         thr=None, limit=set()))
         (g["run"] if r["compiled"] else g["refused"]).add(r["program"])
@@ -304,8 +462,58 @@ def write_doc(path, runs, records):
             key[0], key[1], key[2], len(g["run"]), len(g["refused"]), g["v"] or "-", g["f"] or "-",
             ", ".join(sorted(g["limit"])) or "-", len(g["spill"]),
             g["thr"] if g["thr"] is not None else "-"))
+    lines += cost_doc(estimates)
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
+
+
+def cost_doc(estimates):
+    """docs/devices.md's estimated frame rates: per board, the tier swell picks there and forced
+    gles2-min, both qualities and sizes, the default view and the slowest of the four."""
+    lines = ["", "## Estimated frame rates", "",
+             "The cost model (tools/devices.py BOARDS): a frame takes, per program drawn, its "
+             "share of the screen times the pixels times its cost per pixel as its compiler "
+             "states it (lima and freedreno: instructions; vc4: estimated cycles; v3d: "
+             "instructions and stalls; Bifrost: tuples; Midgard: bundles; "
+             "etnaviv: instructions), over the board's clock times the lanes that retire one "
+             "unit of that cost a cycle; plus every grid vertex through the largest vertex "
+             "shader drawn. Shares are measured: swell --debug variants draws each run of rows "
+             "in a colour naming its program (llvmpipe, the same tier, quality, size and view; "
+             "a program the device refuses is replaced by the one swell draws its rows with "
+             "there). Not modelled: texture and memory bandwidth, latency a single thread "
+             "cannot hide (vc4 'threads 1'), the CPU's work (gles2-min: the grid and its "
+             "shading, src/vshade.c), the display. So these are upper bounds of the shading "
+             "alone, on clocks and lanes assumed from each board's published figures:", ""]
+    seen = []
+    for e in estimates:
+        if e["board"] not in seen:
+            seen.append(e["board"])
+    for b in BOARDS:
+        if b["board"] in seen:
+            lines.append("- %s: %s." % (b["board"], b["note"]))
+    lines += ["", "Views: swell's default camera (10 m up, pitch -10°), and --path surface, 1km "
+              "and 10km at t = 0. fps: the default view's, the slowest view's in brackets; "
+              "target: issue 15 item 4.", "",
+              "| board | tier asked | tier | quality | size | fps default (slowest) | ms fragment "
+              "/ vertex (default) | target | |", "|---|---|---|---|---|---|---|---|---|"]
+    groups = {}
+    for e in estimates:
+        groups.setdefault((e["board"], e["tier_asked"], e["tier"], e["quality"], e["size"]),
+                          []).append(e)
+    for key, es in groups.items():
+        d = next((e for e in es if e["view"] == "default"), es[0])
+        fps = [e["fps"] for e in es if e["fps"] is not None]
+        if d["fps"] is None or not fps:
+            lines.append("| %s | %s | %s | %s | %s | n/a | | %s | |" %
+                         (key + (d["target_fps"] or "-",)))
+            continue
+        worst = min(fps)
+        t = d["target_fps"]
+        verdict = "" if not t else ("meets" if worst >= t else "misses (%.1fx short)" %
+                                    (t / worst))
+        lines.append("| %s | %s | %s | %s | %s | %.1f (%.1f) | %.1f / %.2f | %s | %s |" % (
+            key + (d["fps"], worst, d["ms_fragment"], d["ms_vertex"], t or "-", verdict)))
+    return lines
 
 
 if __name__ == "__main__":

@@ -145,6 +145,8 @@ static float g_bias_max;     /* when > 0: gpu_caps.max_lod_bias, as a device wit
 static int g_no_sun;         /* renderer_desc.no_sun */
 static unsigned g_refuse;    /* renderer_desc.probe_refuse */
 static int g_refused;        /* renderer_stats.refused of the last render */
+static int g_debug_variants; /* renderer_desc.debug_variants */
+static unsigned g_refuse_detile; /* renderer_desc.probe_refuse_detile */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
                    const struct camera *cam, double t, uint8_t *rgba, double *ms)
@@ -173,6 +175,8 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.no_sky = g_no_sky;
     d.no_sun = g_no_sun;
     d.probe_refuse = g_refuse;
+    d.debug_variants = g_debug_variants;
+    d.probe_refuse_detile = g_refuse_detile;
     d.detile = g_detile_mode ? g_detile_mode - 1 : g_no_detile ? DETILE_MODE_OFF : DETILE_MODE_ON;
     rc = renderer_create(&d, &r, &err);
     if (rc)
@@ -329,6 +333,8 @@ static int reset_fixture(void **state)
     g_cpu_geometry = g_fetch_all = g_pixel_lod = g_keep_resolved = g_no_sky = g_no_detile = g_detile_mode = 0;
     g_no_sun = 0;
     g_refuse = 0;
+    g_debug_variants = 0;
+    g_refuse_detile = 0;
     g_bias_max = 0.0f;
     return 0;
 }
@@ -1405,6 +1411,83 @@ static void test_refused_fallback(void **state)
     gpu_shutdown(&gpu);
 }
 
+/* --detile auto where the driver refuses programs with the lattice (Vivante GC2000: 9 of high
+ * quality's 12; renderer_create): built again without it, every program runs and every pixel
+ * is sea, each pattern read once; where the driver refuses as many without it, the lattice
+ * stays. */
+static void test_detile_refused(void **state)
+{
+    struct camera c;
+    (void)state;
+    surface_camera(&c);
+    g_detile_mode = DETILE_MODE_AUTO + 1;
+    g_refuse_detile = ~1u;   /* with the lattice, all but VARIANT(0, 0) */
+    render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img, NULL);
+    check_defined(fx.img, "programs with the lattice refused");
+    print_message("refused with the lattice only: detile %d, %d refused\n", g_detile_used,
+                  g_refused);
+    assert_int_equal(g_detile_used, 0);
+    assert_int_equal(g_refused, 0);
+    g_refuse_detile = 0;
+    g_refuse = ~1u;          /* refused either way */
+    render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img, NULL);
+    check_defined(fx.img, "programs refused with and without the lattice");
+    print_message("refused either way: detile %d, %d refused\n", g_detile_used, g_refused);
+    assert_int_equal(g_detile_used, 1);
+    assert_true(g_refused > 0);
+}
+
+/* The debug view of the programs drawn (swell --debug variants, the shares tools/devices.py's
+ * cost model weighs the compilers' statistics by): every pixel names the sky or one program,
+ * the rows near the camera fetch at least as many patterns as those at the horizon (patterns
+ * are dropped with distance, not added) with more than one program in view, and with every
+ * variant fetching a pattern refused every sea pixel names the one fetching none: the view
+ * shows the program really drawn, fallback included. */
+static void test_debug_variants(void **state)
+{
+    struct camera c;
+    (void)state;
+    surface_camera(&c);
+    c.pitch_deg = -6.0f;
+    g_debug_variants = 1;
+    for (int pass = 0; pass < 2; pass++) {
+        g_refuse = pass ? ~1u : 0u;
+        render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img, NULL);
+        dump(fx.img, pass ? "debug_variants_refused" : "debug_variants");
+        int mixed = 0, sky = 0, seen = 0, k_near = -1, k_far = -1;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                int v = renderer_pixel_variant(fx.img + 4 * ((size_t)y * W + x));
+                if (v == RENDERER_PIXEL_MIXED) {
+                    mixed++;
+                    continue;
+                }
+                if (v == RENDERER_PIXEL_SKY) {
+                    sky++;
+                    continue;
+                }
+                seen |= 1 << v;
+                int k = v / (SWELL_MAX_PATTERNS + 1);
+                if (k_far < 0)
+                    k_far = k;   /* the first sea pixel from the top */
+                if (y == H - 1)
+                    k_near = k_near > k ? k_near : k;
+            }
+        int programs = __builtin_popcount((unsigned)seen);
+        print_message("debug variants%s: %d programs in view, nearest row k=%d, horizon k=%d, "
+                      "sky %.1f %%, mixed %d px\n", pass ? " (all fetching refused)" : "",
+                      programs, k_near, k_far, 100.0 * sky / (W * H), mixed);
+        assert_true(mixed <= W * H / 200);
+        assert_true(sky > 0 && sky < W * H / 2);
+        if (pass) {
+            assert_int_equal(seen, 1);   /* VARIANT(0, 0) alone */
+        } else {
+            assert_true(programs >= 2);
+            assert_true(k_near >= k_far && k_near > 0);
+        }
+    }
+}
+
 int main(void)
 {
     struct platform_desc pd = { 0 };
@@ -1431,6 +1514,8 @@ int main(void)
         cmocka_unit_test_teardown(test_quality_match, reset_fixture),
         cmocka_unit_test_teardown(test_glitter_width, reset_fixture),
         cmocka_unit_test_teardown(test_refused_fallback, reset_fixture),
+        cmocka_unit_test_teardown(test_debug_variants, reset_fixture),
+        cmocka_unit_test_teardown(test_detile_refused, reset_fixture),
         cmocka_unit_test_teardown(test_baked_tables, reset_fixture),
         cmocka_unit_test_teardown(test_horizon, reset_fixture),
         cmocka_unit_test_teardown(test_horizon_sphere, reset_fixture),
