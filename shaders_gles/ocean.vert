@@ -1,8 +1,10 @@
 // ocean.vert - the sea's vertices. On gles2-min (no vertex texture fetch) the CPU displaces
-// validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 SWELL_NO_DETILE
-// them and evaluates every term of the vertex alone (src/vshade.c), and this stage only adds
-// each run's constants; on the tiers with vertex texture fetch it builds and displaces the
-// projected grid and evaluates those terms itself (vertex_terms). Positions are
+// validate: FS_PATTERNS=2 FS_WHITECAPS=1 CPU_VERTEX_TERMS | FS_PATTERNS=4 FS_WHITECAPS=2 CPU_VERTEX_TERMS | FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 SWELL_NO_DETILE
+// them and this stage evaluates the terms of the vertex alone (vterms.glsl vertex_terms), or,
+// where the driver refuses that (CPU_VERTEX_TERMS: Vivante GC2000's 256 instructions), the CPU
+// evaluates them too (src/vshade.c) and this stage only adds each run's constants; on the
+// tiers with vertex texture fetch it builds and displaces the projected grid and evaluates
+// the terms itself. Positions are
 // camera-relative; texture coordinates are a per-pattern offset wrapped on the CPU in double
 // plus the camera-relative rest position over the patch size, so they stay small.
 //
@@ -14,7 +16,7 @@
 // instead of two normalisations, a reflection and a stereographic division per pixel in
 // mediump. The slowly varying factors of the Ross BRDF are per vertex too.
 #include "common.glsl"
-#ifdef VTF_PATTERNS
+#ifndef CPU_VERTEX_TERMS
 // vertex_terms and its uniforms
 #include "vterms.glsl"
 #endif
@@ -112,10 +114,10 @@ vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
 #endif
     return u * u * (3.0 - 2.0 * u) * d;
 }
-#else
-// gles2-min: the CPU displaced the vertex and evaluated every term of the vertex alone
-// (src/vshade.h: the same functions as below, compared by test_vshade); this stage adds the
-// run's constants.
+#elif defined(CPU_VERTEX_TERMS)
+// gles2-min, the driver refusing the vertex shaders below: the CPU displaced the vertex and
+// evaluated every term of the vertex alone (src/vshade.h: vterms.glsl's functions, compared by
+// test_vshade); this stage adds the run's constants.
 attribute vec4 a_pos;       // displaced, camera-relative, m; w: lod_foot
 attribute vec4 a_rest;      // rest position on the sea plane, camera-relative, m; the CPU
                             // patterns' resolved slope variance xy
@@ -128,6 +130,13 @@ attribute vec4 a_sun;       // zeta_h - s0, the Ross factor, eq. 25's x weight
 #ifndef QUALITY_HIGH
 attribute vec3 a_fog;       // in-scattered light of the path to the camera
 #endif
+#else
+// gles2-min: the CPU displaced the vertex (grid.c); the terms of the vertex alone are
+// evaluated here.
+attribute vec3 a_pos;       // displaced, camera-relative, m
+attribute vec2 a_rest;      // rest position on the sea plane, camera-relative, m
+attribute vec4 a_geo_slope; // CPU patterns: mean slope xy, resolved slope variance xy
+attribute vec2 a_geo_k;     // CPU patterns: foam memory mean, variance (Dupuy eq. 7-8)
 #endif
 
 uniform mat4 world_to_clip;             // camera-relative world -> clip
@@ -220,10 +229,10 @@ void main()
     float r2 = dot(rest, rest);
     pos = vec3(rest + disp.xy,
                disp.z - grid_frame.z - r2 / (EARTH_R + sqrt(max(EARTH_R2 - r2, 0.0))));
-    vertex_terms(pos, rest, lin, lin_dx, lin_dy, sun, geo, fog);
     svar = vec2(0.0);       // no CPU patterns on these tiers
     k_geo = vec2(0.0);
-#else
+    vertex_terms(pos, rest, vec2(0.0), svar, lin, lin_dx, lin_dy, sun, geo, fog);
+#elif defined(CPU_VERTEX_TERMS)
     pos = a_pos.xyz;
     rest = a_rest.xy;
     svar = a_rest.zw;
@@ -238,6 +247,12 @@ void main()
 #else
     fog = a_fog;
 #endif
+#else
+    pos = a_pos;
+    rest = a_rest;
+    svar = a_geo_slope.zw;
+    k_geo = a_geo_k;
+    vertex_terms(pos, rest, a_geo_slope.xy, svar, lin, lin_dx, lin_dy, sun, geo, fog);
 #endif
     v_lin = lin;
     v_lin_dx = lin_dx;

@@ -1,7 +1,7 @@
-// vterms.glsl - the terms of a sea vertex alone, for ocean.vert on the tiers with vertex
-// texture fetch; src/vshade.c evaluates the same on the CPU for gles2-min (the uniforms here are
-// the fields of its struct vshade_frame) and test_glsl's test_vshade compares the two on the GPU
-// through tests/glsl/fn_vterms.vert. Needs common.glsl; QUALITY_HIGH drops the fog.
+// vterms.glsl - the terms of a sea vertex alone, for ocean.vert; src/vshade.c evaluates the same
+// on the CPU where a driver refuses the vertex shaders that do (CPU_VERTEX_TERMS; the uniforms
+// here are the fields of its struct vshade_frame), and test_glsl's test_vshade compares the two
+// on the GPU through tests/glsl/fn_vterms.vert. Needs common.glsl; QUALITY_HIGH drops the fog.
 // the terms of the vertex alone (vshade.h's frame: on gles2-min the CPU evaluates them)
 uniform vec2 fresnel_uv_scale;          // the Fresnel texels' share of the atlas (renderer.c)
 uniform vec3 lin_s0;        // xy: mean slope of every fragment pattern slot; z: step h
@@ -38,15 +38,16 @@ vec4 lookups(vec3 v, vec2 s)
     return vec4((vec2(0.5) + 0.5 * fv) * fresnel_uv_scale, sky_map_uv(reflect(-v, n)));
 }
 
-// The terms of the vertex alone, with vshade.h's layout (vshade.c evaluates the same for
-// gles2-min): position p and rest point rest, camera-relative.
-void vertex_terms(vec3 p, vec2 rest, out vec4 lin, out vec4 lin_dx, out vec4 lin_dy,
-                  out vec4 sun, out vec3 geo, out vec3 fog)
+// The terms of the vertex alone, with vshade.h's layout (vshade.c evaluates the same): position
+// p and rest point rest, camera-relative; the patterns resolved on the CPU (grid.c) add their
+// mean slope s_cpu and slope variance svar (0 on the tiers with vertex texture fetch).
+void vertex_terms(vec3 p, vec2 rest, vec2 s_cpu, vec2 svar, out vec4 lin, out vec4 lin_dx,
+                  out vec4 lin_dy, out vec4 sun, out vec3 geo, out vec3 fog)
 {
     vec3 v = normalize(-p);
     // the sphere's own slope at the rest point (its drop R - sqrt(R^2 - r^2) differentiated)
     // tilts every distant normal towards the camera's vertical
-    vec2 s0 = lin_s0.xy - rest * inversesqrt(max(EARTH_R2 - dot(rest, rest), 1.0));
+    vec2 s0 = s_cpu + lin_s0.xy - rest * inversesqrt(max(EARTH_R2 - dot(rest, rest), 1.0));
     float h = lin_s0.z;
     // The value at s0 and forward differences over h: three lookups. Central differences
     // (five) cost 45 more of a vertex shader's 365 instructions on Vivante per pair; the mean of
@@ -68,7 +69,7 @@ void vertex_terms(vec3 p, vec2 rest, out vec4 lin, out vec4 lin_dx, out vec4 lin
     float wx = dot(vt, vt) > 1e-6 ? vt.x * vt.x / dot(vt, vt) : 0.5;   // eq. 25's weights
     float cos_v = max(dot(v, n), 0.01), cos_l = dot(l, n);
     float hn = max(dot(hv, n), 0.05);
-    float var_v = mix(total_var.y, total_var.x, wx);
+    float var_v = mix(total_var.y + svar.y, total_var.x + svar.x, wx);
     float c5 = 1.0 - clamp(dot(v, hv), 0.0, 1.0);
     float fs = 0.02 + 0.98 * c5 * c5 * c5 * c5 * c5;   // Schlick, as in eq. 15
     vec2 lam = ross_lambda2(vec2(cos_v, cos_l), var_v);

@@ -117,13 +117,16 @@ static const char *const sky_uniform_names[SU_COUNT] = {
 #define VARIANT_K(v) ((v) / (SWELL_MAX_PATTERNS + 1))
 #define VARIANT_KW(v) ((v) % (SWELL_MAX_PATTERNS + 1))
 
-/* gles2-min's attributes are vshade.h's vectors, in order; a vertex-texture-fetch program has
- * a_grid alone (at 0, with a_pos: GLES 2 promises 8 locations). */
-enum { A_POS = 0, A_REST, A_GEO, A_LIN, A_LIN_DX, A_LIN_DY, A_SUN, A_FOG, A_COUNT, A_GRID = 0 };
+/* gles2-min's attributes with the terms of the vertex on the CPU (cpu_vterms) are vshade.h's
+ * vectors, in order; without, grid.c's four (a_geo_slope, a_geo_k at 2 and 3); a
+ * vertex-texture-fetch program has a_grid alone (at 0, with a_pos: GLES 2 promises 8
+ * locations, and names sharing one are never in the same program). */
+enum { A_POS = 0, A_REST, A_GEO, A_LIN, A_LIN_DX, A_LIN_DY, A_SUN, A_FOG, A_COUNT, A_GRID = 0,
+       A_GEO_SLOPE = 2, A_GEO_K = 3, A_GRID_COUNT = 4 };
 static const struct shader_attrib ocean_attribs[] = {
     { "a_pos", A_POS }, { "a_rest", A_REST }, { "a_geo", A_GEO }, { "a_lin", A_LIN },
     { "a_lin_dx", A_LIN_DX }, { "a_lin_dy", A_LIN_DY }, { "a_sun", A_SUN }, { "a_fog", A_FOG },
-    { "a_grid", A_GRID }
+    { "a_grid", A_GRID }, { "a_geo_slope", A_GEO_SLOPE }, { "a_geo_k", A_GEO_K }
 };
 _Static_assert(VSHADE_POS == 4 * A_POS && VSHADE_REST == 4 * A_REST && VSHADE_GEO == 4 * A_GEO &&
                VSHADE_LIN == 4 * A_LIN && VSHADE_LIN_DX == 4 * A_LIN_DX &&
@@ -224,7 +227,10 @@ struct renderer {
     unsigned cpu_mask;                /* patterns resolved per vertex */
     struct fs_slot slot[SWELL_MAX_PATTERNS];
     float *verts;                     /* VTF: the grid parameters; else grid.c's vertices */
-    float *shaded;                    /* gles2-min: vshade.c's, uploaded each frame */
+    float *shaded;                    /* cpu_vterms: vshade.c's, uploaded each frame */
+    int cpu_vterms;                   /* gles2-min: the terms of each vertex on the CPU
+                                       * (vshade.h), the driver refusing ocean.vert's
+                                       * (renderer_create) */
     struct vshade_frame vf;           /* this frame's terms of the vertex stage (vertex_frame):
                                        * vshade.c's input, the VTF programs' uniforms */
     float exposure;
@@ -300,10 +306,18 @@ int renderer_pixel_variant(const uint8_t rgba[4])
     return rgba[0] / 10 - 1;
 }
 
+/* How the programs were built where renderer_create built them again: "", " cpu-vertex"
+ * (the terms of the vertex on the CPU), " no-detile" (no lattice), or both. */
+static const char *program_tags(const struct renderer *r)
+{
+    int cpu = r->cpu_vterms && !r->vtf, off = !renderer_detile(r);
+    return cpu && off ? " cpu-vertex no-detile" : cpu ? " cpu-vertex" : off ? " no-detile" : "";
+}
+
 void renderer_program_name(const struct renderer *r, int v, char *buf, size_t size)
 {
     snprintf(buf, size, "ocean k=%d kw=%d %s%s", VARIANT_K(v), VARIANT_KW(v),
-             render_quality_name(r->d.quality), renderer_detile(r) ? "" : " no-detile");
+             render_quality_name(r->d.quality), program_tags(r));
 }
 
 int renderer_detile(const struct renderer *r)
@@ -869,6 +883,8 @@ static int build_programs(struct renderer *r, struct swell_err *err)
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",
                          r->t->patterns);
+            else if (r->cpu_vterms)
+                snprintf(defines + n, sizeof(defines) - (size_t)n, " CPU_VERTEX_TERMS");
             od.uniform_locations = r->ou[v];
             if ((rc = shader_program_build(&od, &r->ocean[v], err)))
                 return rc;
@@ -928,11 +944,11 @@ static int create_buffers(struct renderer *r, struct swell_err *err)
     /* VTF: a static (i, j) / (w - 1, h - 1) per vertex; else the streamed CPU vertices, grid.c's
      * and vshade.c's from them */
     size_t nv = (size_t)grid_vertex_count(r->grid);
-    size_t vbytes = sizeof(float) * (r->vtf ? 2 : VSHADE_FLOATS) * nv;
+    size_t vbytes = sizeof(float) * (r->vtf ? 2 : r->cpu_vterms ? VSHADE_FLOATS : GRID_FLOATS) * nv;
     size_t gbytes = sizeof(float) * (r->vtf ? 2 : GRID_FLOATS) * nv;
     size_t ibytes = sizeof(uint16_t) * (size_t)grid_index_count(r->grid);
     int rc;
-    if (!(r->verts = calloc(1, gbytes)) || (!r->vtf && !(r->shaded = calloc(1, vbytes))))
+    if (!(r->verts = calloc(1, gbytes)) || (r->cpu_vterms && !(r->shaded = calloc(1, vbytes))))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for %zu vertex bytes",
                           vbytes + gbytes);
     if ((rc = gpu_buffer_create(r->gpu, GL_ARRAY_BUFFER, vbytes,
@@ -1131,7 +1147,8 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                 covered = n > PROBE_SIZE * PROBE_SIZE / 2;
             }
             unsigned refuse = r->d.probe_refuse |
-                              (renderer_detile(r) ? r->d.probe_refuse_detile : 0u);
+                              (renderer_detile(r) ? r->d.probe_refuse_detile : 0u) |
+                              (r->cpu_vterms ? 0u : r->d.probe_refuse_gpu_vertex);
             r->variant_ok[v] = !rc && !refused_in(text) && covered &&
                                !((refuse >> (v & 31)) & 1u);
             if (label)
@@ -1191,10 +1208,11 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
                                        VARIANT_K(use), VARIANT_KW(use));
         }
     if (r->refused)
-        fprintf(stderr, "swell: the driver (%s) refused %d ocean program(s)%s; their rows are "
-                "drawn fetching fewer (or more) patterns/whitecap tables:%s\n",
+        fprintf(stderr, "swell: the driver (%s) refused %d ocean program(s)%s%s%s; their rows "
+                "are drawn fetching fewer (or more) patterns/whitecap tables:%s\n",
                 (const char *)glGetString(GL_RENDERER), r->refused,
-                renderer_detile(r) ? "" : " (no-detile)", list);
+                program_tags(r)[0] ? " [" : "", program_tags(r)[0] ? program_tags(r) + 1 : "",
+                program_tags(r)[0] ? "]" : "", list);
     return gpu_check("renderer: start-up probe", err);
 }
 
@@ -1221,6 +1239,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     r->t = desc->tables;
     assign_patterns(r);
     r->vtf = choose_vtf(r);
+    r->cpu_vterms = !r->vtf && r->d.cpu_vertex_terms;
     r->run_lod = r->gpu->caps.prefer_run_lod && !r->d.pixel_lod;
     gd.tables = r->t;
     gd.kind = r->d.geometry;
@@ -1241,34 +1260,95 @@ fail:
     return rc;
 }
 
-/* --detile auto where the driver refuses programs with the lattice (issue 15: Vivante GC2000
- * runs 3 of high quality's 12 with it, all 12 without; VideoCore IV 7 and 12): built again
- * without it, and kept if the driver then refuses fewer. A pattern that repeats on its tile
- * is the lesser loss than the patterns a refused program's rows go without. */
+/* Where the driver refuses ocean programs (issue 15), built again in the ways that may fit,
+ * in order: on gles2-min the terms of each vertex on the CPU (vshade.h: Vivante GC2000 refuses
+ * ocean.vert's past its 256 instructions; costs CPU time, not the picture); with --detile auto,
+ * without the lattice of random offsets (VideoCore IV runs 7 of high quality's 12 programs
+ * with it, 12 without: each pattern then repeats on its tile, the lesser loss than the
+ * patterns a refused program's rows go without); both (GC2000: 1, 3 with the CPU's terms, 12
+ * with both). The first build the driver refuses nothing of is kept, else the one it refuses
+ * least of (the earliest of those): one renderer at a time, so the GPU budget holds. */
+/* One build for renderer_create: 0 and the number of programs refused in *refused, or its
+ * error; a driver that runs none of them (SWELL_E_SHADER) counts as refusing all, with no
+ * renderer. */
+static int create_try(const struct renderer_desc *d, struct renderer **out, int *refused,
+                      struct swell_err *err)
+{
+    int rc = create_once(d, out, err);
+    *refused = rc == 0 ? (*out)->refused : OCEAN_VARIANTS + 1;
+    return rc == SWELL_E_SHADER ? 0 : rc;
+}
+
 int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
 {
-    int rc = create_once(desc, out, err);
-    if (rc || desc->detile != DETILE_MODE_AUTO || !(*out)->refused || !renderer_detile(*out))
+    struct swell_err first_err = { 0 };
+    int first, rc = create_try(desc, out, &first, &first_err);
+    if (rc || first == 0) {
+        if (err)
+            *err = first_err;
         return rc;
-    int with = (*out)->refused;
-    struct renderer_desc off = *desc;
-    off.detile = DETILE_MODE_OFF;
-    renderer_destroy(*out);
-    *out = NULL;
-    rc = create_once(&off, out, err);
-    if (!rc && (*out)->refused < with) {
-        (*out)->detile_refused = with;
-        fprintf(stderr, "swell: --detile auto: without the random offsets the driver refuses %d "
-                "ocean program(s), not %d; each pattern now repeats on its tile\n",
-                (*out)->refused, with);
-        return 0;
     }
-    if (!rc)
-        renderer_destroy(*out);
-    *out = NULL;
+    /* what the first build resolved (create_once): vertex texture fetch leaves no vertex
+     * terms to move; auto's lattice is on in high quality */
+    struct renderer_desc probe_d = *desc;
+    resolve(&probe_d);
+    int vtf = *out ? (*out)->vtf : 0, cpu = *out ? (*out)->cpu_vterms : desc->cpu_vertex_terms;
+    struct renderer_desc tries[3];
+    int n = 0, can_cpu = !vtf && !cpu;
+    int can_off = desc->detile == DETILE_MODE_AUTO && probe_d.detile == DETILE_MODE_ON;
+    if (can_cpu) {
+        tries[n] = *desc;
+        tries[n++].cpu_vertex_terms = 1;
+    }
+    if (can_off) {
+        tries[n] = *desc;
+        tries[n++].detile = DETILE_MODE_OFF;
+    }
+    if (can_cpu && can_off) {
+        tries[n] = tries[n - 1];
+        tries[n++].cpu_vertex_terms = 1;
+    }
+    int best = -1, best_refused = first, cur = -1;   /* -1: desc itself */
+    for (int i = 0; i < n && best_refused > 0; i++) {
+        int refused;
+        if (*out)
+            renderer_destroy(*out);
+        *out = NULL;
+        cur = i;
+        if ((rc = create_try(&tries[i], out, &refused, err)))
+            return rc;
+        if (refused < best_refused) {
+            best = i;
+            best_refused = refused;
+        }
+    }
+    if (best_refused > OCEAN_VARIANTS) {   /* none runs any: the first build's message */
+        if (*out)
+            renderer_destroy(*out);
+        *out = NULL;
+        if (err)
+            *err = first_err;
+        return SWELL_E_SHADER;
+    }
+    if (cur != best || !*out) {
+        if (*out)
+            renderer_destroy(*out);
+        *out = NULL;
+        if ((rc = create_once(best < 0 ? desc : &tries[best], out, err)))
+            return rc;
+    }
+    if (best >= 0) {
+        (*out)->detile_refused = renderer_detile(*out) ? 0 : first;
+        if (first > OCEAN_VARIANTS)
+            fprintf(stderr, "swell: built again as%s: the driver refuses %d ocean program(s), "
+                    "not all\n", program_tags(*out), (*out)->refused);
+        else
+            fprintf(stderr, "swell: built again as%s: the driver refuses %d ocean program(s), "
+                    "not %d\n", program_tags(*out), (*out)->refused, first);
+    }
     if (err)
-        memset(err, 0, sizeof(*err));
-    return create_once(desc, out, err);   /* no better without: as it was */
+        memset(err, 0, sizeof(*err));   /* a try that failed on the way is no error */
+    return 0;
 }
 
 int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err)
@@ -1993,7 +2073,8 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
     float aspect = height > 0 ? (float)width / (float)height : 1.0f;
     GLint depth_bits = 0;
     int nidx;
-    size_t vbytes = sizeof(float) * VSHADE_FLOATS * (size_t)grid_vertex_count(r->grid);
+    size_t vbytes = sizeof(float) * (r->cpu_vterms ? VSHADE_FLOATS : GRID_FLOATS) *
+                    (size_t)grid_vertex_count(r->grid);
     camera_view_rel(cam, view);
     camera_projection(cam, aspect, proj);
     glm_mat4_mul(proj, view, world_to_clip);
@@ -2004,7 +2085,7 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
         stream_disp(r, t_s);
     } else {
         nidx = grid_update(r->grid, cam, aspect, t_s, r->verts);
-        if (nidx > 0)   /* the terms of each vertex alone, on the CPU (vshade.h) */
+        if (nidx > 0 && r->cpu_vterms)   /* the terms of each vertex, on the CPU (vshade.h) */
             vshade_fill(&r->vf, r->verts, grid_vertex_count(r->grid), r->shaded);
     }
 
@@ -2037,7 +2118,7 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
         if (r->vtf) {
             glEnableVertexAttribArray(A_GRID);
             glVertexAttribPointer(A_GRID, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-        } else {
+        } else if (r->cpu_vterms) {
             glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->shaded);
             /* vshade.h: eight vec4 in order (high quality's programs have no a_fog) */
             for (int a = 0; a < A_COUNT; a++) {
@@ -2045,6 +2126,18 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
                 glVertexAttribPointer((GLuint)a, 4, GL_FLOAT, GL_FALSE,
                                       VSHADE_FLOATS * sizeof(float),
                                       (const void *)(4 * (size_t)a * sizeof(float)));
+            }
+        } else {
+            glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
+            static const struct { int loc, size, off; } grid_attr[A_GRID_COUNT] = {
+                { A_POS, 3, GRID_A_POS }, { A_REST, 2, GRID_A_REST },
+                { A_GEO_SLOPE, 4, GRID_A_SLOPE }, { A_GEO_K, 2, GRID_A_K }
+            };
+            for (int a = 0; a < A_GRID_COUNT; a++) {
+                glEnableVertexAttribArray((GLuint)grid_attr[a].loc);
+                glVertexAttribPointer((GLuint)grid_attr[a].loc, grid_attr[a].size, GL_FLOAT,
+                                      GL_FALSE, GRID_FLOATS * sizeof(float),
+                                      (const void *)(grid_attr[a].off * sizeof(float)));
             }
         }
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ibo);
@@ -2067,7 +2160,9 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
     memset(out, 0, sizeof(*out));
     out->gpu_bytes = r->gpu_bytes;
     out->cpu_bytes_per_frame = r->stream_bytes + (r->vtf ? 0 :
-        sizeof(float) * VSHADE_FLOATS * (uint64_t)grid_vertex_count(r->grid));
+        sizeof(float) * (r->cpu_vterms ? VSHADE_FLOATS : GRID_FLOATS) *
+        (uint64_t)grid_vertex_count(r->grid));
+    out->cpu_vertex_terms = r->cpu_vterms;
     out->vertices = grid_vertex_count(r->grid);
     out->triangles = grid_index_count(r->grid) / 3;
     out->sea_draws = r->draws;
@@ -2097,6 +2192,9 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         geometry_kind_name(r->d.geometry),
         r->vtf ? "built and displaced in the vertex shader (vertex texture fetch, two loop frames "
                  "per pattern blended there)"
+        : r->cpu_vterms ? "CPU-displaced (no vertex texture fetch) and the terms of each vertex "
+                          "on the CPU (the driver refused the vertex shaders that evaluate "
+                          "them), streamed per frame"
                : "CPU-displaced (no vertex texture fetch), streamed per frame",
         grid_vertex_count(r->grid), r->nfs,
         r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes, r->nwc,
@@ -2130,6 +2228,10 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
               "whitecaps (Dupuy eq. 6) and haze per vertex");
     if (n > 0 && (size_t)n < size && r->d.quality == QUALITY_HIGH && !r->run_lod &&
         !shader_has_gradients(&r->gpu->caps))
-        snprintf(buf + n, size - (size_t)n, "sky LOD bias: at most %g (the device's limit)\n",
-                 (double)r->gpu->caps.max_lod_bias);
+        n += snprintf(buf + n, size - (size_t)n, "sky LOD bias: at most %g (the device's "
+                      "limit)\n", (double)r->gpu->caps.max_lod_bias);
+    if (n > 0 && (size_t)n < size)
+        snprintf(buf + n, size - (size_t)n, "programs: ocean k=K kw=KW %s%s (the start-up "
+                 "probe's names), %d refused\n", render_quality_name(r->d.quality),
+                 program_tags(r), r->refused);
 }

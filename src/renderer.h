@@ -55,6 +55,11 @@ struct renderer_desc {
                                          * by the driver (renderer.c probe_programs) */
     unsigned probe_refuse_detile;       /* tests: the same for the programs built with the
                                          * lattice of random offsets only (GC2000's case) */
+    unsigned probe_refuse_gpu_vertex;   /* tests: the same for those whose vertex shader
+                                         * evaluates the terms of the vertex (GC2000's) */
+    int cpu_vertex_terms;               /* 1: on gles2-min the terms of each vertex on the CPU
+                                         * (vshade.h) from the start; default 0: only where the
+                                         * driver refuses ocean.vert's (renderer_create) */
     int detile;                         /* enum detile_mode (swell --detile); default AUTO.
                                          * The CPU query (sea.h) takes renderer_detile's flag */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
@@ -85,6 +90,8 @@ struct renderer_stats {
     int run_lod;                        /* pattern tables fetched at one LOD per run */
     int vtf;                            /* grid built and displaced in the vertex shader */
     int detile;                         /* 1: the lattice of random offsets is on */
+    int cpu_vertex_terms;               /* gles2-min: the terms of each vertex on the CPU
+                                         * (vshade.h): the driver refused ocean.vert's */
     int refused;                        /* ocean variants the start-up probe found refused
                                          * (their rows drawn with fewer fetches) */
     double camera_raise_m;              /* the last frame drew the camera this much higher, m:

@@ -61,10 +61,10 @@ static void sky_map_uv(const float *rin, float *uv)
 
 /* ocean.vert lookups: the Fresnel-texture uv of view v bumped by slope s (Hu §5.1; fresnel.h's
  * radius 1 - sqrt(1 - theta / (pi / 2)), theta = asin rho) and the sky-map uv of the reflected
- * ray. */
-static void lookups(const struct vshade_frame *f, const float *v, const float *s, float *out)
+ * ray; n: the facing normal (shade_one reuses the one at s0). */
+static void lookups(const struct vshade_frame *f, const float *v, const float *s, float *out,
+                    float *n)
 {
-    float n[3];
     facing_normal(v, s, n);
     float fv[2] = { v[0] - n[0], v[1] - n[1] };
     float rho = sqrtf(fv[0] * fv[0] + fv[1] * fv[1]);
@@ -115,10 +115,10 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
                     gv[GRID_A_SLOPE + 1] + f->lin_s0[1] - rest[1] * curv };
     float h = f->lin_s0[2];
     float sx[2] = { s0[0] + h, s0[1] }, sy[2] = { s0[0], s0[1] + h };
-    float ax[4], ay[4];
-    lookups(f, v, s0, o + VSHADE_LIN);
-    lookups(f, v, sx, ax);
-    lookups(f, v, sy, ay);
+    float ax[4], ay[4], n[3], nd[3];
+    lookups(f, v, s0, o + VSHADE_LIN, n);
+    lookups(f, v, sx, ax, nd);
+    lookups(f, v, sy, ay, nd);
     for (int c = 0; c < 4; c++) {
         o[VSHADE_LIN_DX + c] = (ax[c] - o[VSHADE_LIN + c]) / h;
         o[VSHADE_LIN_DY + c] = (ay[c] - o[VSHADE_LIN + c]) / h;
@@ -126,8 +126,7 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
     /* Ross BRDF (Bruneton eq. 15) but for the slope density: at the vertex's mean normal, the
      * shadowing with the sea's whole slope variance (ocean.vert) */
     const float *l = f->sun_dir;
-    float n[3], hv[3] = { v[0] + l[0], v[1] + l[1], v[2] + l[2] };
-    facing_normal(v, s0, n);
+    float hv[3] = { v[0] + l[0], v[1] + l[1], v[2] + l[2] };   /* n: facing_normal(v, s0) */
     normalize3(hv);
     float tx[3] = { n[2], 0.0f, -n[0] };
     normalize3(tx);
@@ -150,9 +149,7 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
     /* eq. 27's footprint in texels, 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z) */
     float rz = 2.0f * dot3(n, v) * n[2] - v[2];
     float plen = sqrtf(dot3(p, p)), m = plen * f->haze_frame[0];
-    float t[3];
-    for (int c = 0; c < 3; c++)
-        t[c] = expf(-f->haze_tau[c] * m);
+    float t[3] = { 0.0f, expf(-f->haze_tau[1] * m), 0.0f };   /* green's; the others for fog */
     memcpy(o + VSHADE_POS, p, 3 * sizeof(float));
     o[VSHADE_POS + 3] = log2f(rr2 + f->lod_frame[0]) + f->lod_frame[1];
     o[VSHADE_REST + 0] = rest[0];
@@ -169,6 +166,8 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
         return;
     }
     /* aerial perspective (ocean.vert haze): (1 - T) times the horizon sky of its azimuth */
+    t[0] = expf(-f->haze_tau[0] * m);
+    t[2] = expf(-f->haze_tau[2] * m);
     float pxy = maxf(sqrtf(p[0] * p[0] + p[1] * p[1]), 1e-6f);
     float cg = (p[0] * f->sun_dir[0] + p[1] * f->sun_dir[1]) / pxy;
     float sky_h[3];

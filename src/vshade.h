@@ -1,18 +1,20 @@
-/* vshade.h - the vertex stage's shading on the CPU, for gles2-min (issue 15).
+/* vshade.h - the vertex stage's shading on the CPU, for gles2-min where the driver refuses the
+ * vertex shaders that evaluate it (issue 15; renderer.c renderer_create tries this build).
  *
  * On gles2-min the CPU already displaces every vertex (grid.c); the terms ocean.vert derives
- * from a vertex's position alone are computed here as well, once per frame, so the GPU's vertex
- * shader only reads them: the two lookups of Hu §5.1's Fresnel texture and Bruneton §5.2's sky
- * map linearised in the fine-scale slope (their value at the vertex's mean slope s0 and forward
- * differences over the step h), the slowly varying factors of Bruneton eq. 15's Ross BRDF,
- * eq. 27's sky footprint, the aerial perspective (sky.h sky_haze) and the pixel footprint
- * (renderer.c row_footprint). On the tiers with vertex texture fetch ocean.vert computes the
- * same terms itself (its VTF_PATTERNS branch); test_vshade compares the two.
+ * from a vertex's position alone (shaders_gles/vterms.glsl vertex_terms) are computed here as
+ * well, once per frame, so the GPU's vertex shader only reads them: the two lookups of Hu
+ * §5.1's Fresnel texture and Bruneton §5.2's sky map linearised in the fine-scale slope (their
+ * value at the vertex's mean slope s0 and forward differences over the step h), the slowly
+ * varying factors of Bruneton eq. 15's Ross BRDF, eq. 27's sky footprint, the aerial
+ * perspective (sky.h sky_haze) and the pixel footprint (renderer.c row_footprint).
+ * test_glsl's test_vshade compares the two.
  *
- * Why: Vivante GC2000's vertex shaders are limited to 256 instructions and these terms took
+ * Why: Vivante GC2000's vertex shaders are limited to 256 instructions and these terms take
  * 200-250 of them (three lookups, each a normalisation, an asin, a square root and a
- * stereographic division); a projected grid has a few thousand vertices, so on the CPU they
- * cost well under a millisecond a frame (make bench: vshade).
+ * stereographic division). The price is CPU time: about 1,200 instructions a vertex, 5.3 M a
+ * frame for the projected grid's 4,480 vertices (callgrind), which is why the vertex shader
+ * keeps them wherever the driver takes it.
  *
  * Everything is camera-relative (camera.h), as grid.c's output. */
 #ifndef SWELL_VSHADE_H

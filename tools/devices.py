@@ -127,13 +127,16 @@ BEGIN = re.compile(r"^swell-program: begin (\S+) \+ (\S+) \[(.*)\] tier (\S+)$")
 
 
 def program_name(vs, defines):
-    """The probe's name for a build: 'ocean k=1 kw=0 high', '... no-detile' without the
-    lattice (renderer.c renderer_program_name), 'sky', 'sky sun'."""
+    """The probe's name for a build: 'ocean k=1 kw=0 high', then ' cpu-vertex' with the
+    vertex's terms on the CPU and ' no-detile' without the lattice (renderer.c
+    renderer_program_name), 'sky', 'sky sun'."""
     d = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in defines.split())
     if vs.startswith("ocean"):
-        return "ocean k=%s kw=%s %s%s" % (d.get("FS_PATTERNS", "?"), d.get("FS_WHITECAPS", "?"),
-                                          "high" if "QUALITY_HIGH" in d else "low",
-                                          " no-detile" if "SWELL_NO_DETILE" in d else "")
+        return "ocean k=%s kw=%s %s%s%s" % (
+            d.get("FS_PATTERNS", "?"), d.get("FS_WHITECAPS", "?"),
+            "high" if "QUALITY_HIGH" in d else "low",
+            " cpu-vertex" if "CPU_VERTEX_TERMS" in d else "",
+            " no-detile" if "SWELL_NO_DETILE" in d else "")
     return "sky sun" if "SUN_DISC" in d else "sky"
 
 
@@ -227,8 +230,9 @@ def problems(rec, model):
 
 
 SHARE = re.compile(r"^swell: frame \d+: screen share: (.*)$")
-USE = re.compile(r"refused \d+ ocean program\(s\)( \(no-detile\))?;[^:]*: "
+USE = re.compile(r"refused \d+ ocean program\(s\)(?: \[([^\]]*)\])?;[^:]*: "
                  r"((?:\d+/\d+->\d+/\d+ ?)+)")
+BUILD = re.compile(r"^programs: ocean k=K kw=KW (\S+)((?: [a-z-]+)*) \(")
 
 
 def measure_shares(root, build, tables, tier, quality, detile, size, view, cache):
@@ -261,13 +265,13 @@ def measure_shares(root, build, tables, tier, quality, detile, size, view, cache
     return cache[key]
 
 
-def drawn_as(name, use, have):
+def drawn_as(name, use, have, tags):
     """The program a device draws program name's rows with: swell's fallback (use: 'k/kw' ->
     'k/kw', printed at start-up) where it refused it; for a variant the device did not build
     (fewer texture units: fewer whitecap tables), the one with the same slope fetches and the
     most whitecap fetches it has, or its fallback."""
-    m = re.match(r"^ocean k=(\d+) kw=(\d+) (\S+)( no-detile)?$", name)
-    k, kw, q = int(m.group(1)), int(m.group(2)), m.group(3) + (m.group(4) or "")
+    m = re.match(r"^ocean k=(\d+) kw=(\d+) (\S+)", name)
+    k, kw, q = int(m.group(1)), int(m.group(2)), m.group(3) + (" " + tags if tags else "")
     for w in range(kw, -1, -1):
         u = use.get("%d/%d" % (k, w))
         c = "ocean k=%s kw=%s %s" % (tuple(u.split("/")) + (q,)) if u else \
@@ -293,7 +297,7 @@ def estimate(board, run, records, shares, verts, size):
     for name, share in shares.items():
         if name == "mixed":
             continue
-        prog = "sky" if name == "sky" else drawn_as(name, run["use"], have)
+        prog = "sky" if name == "sky" else drawn_as(name, run["use"], have, run["tags"])
         c = cost.get((prog, "fragment")) if prog else None
         if c is None:
             return None
@@ -370,13 +374,13 @@ def run(args):
                 drew = "none" if rc != 0 else (m[-1] if m else quality)
                 # the build drawn: with or without the lattice (the retry of --detile auto),
                 # and its fallbacks
-                nodetile = any(l.startswith("tiles: each pattern read once")
-                               for l in text.splitlines())
-                use = [u[1] for u in USE.findall(text) if bool(u[0]) == nodetile]
+                tags = [m.group(2).strip() for m in map(BUILD.match, text.splitlines()) if m]
+                tags = tags[-1] if tags else ""
+                use = [u[1] for u in USE.findall(text) if u[0] == tags]
                 use = dict(kv.split("->") for kv in use[-1].split()) if use else {}
                 runs.append(dict(model=model["name"], gpu=gpu, tier_asked=tier, tier=picked,
                                  quality=quality, drew=drew, exit=rc, use=use,
-                                 detile=not nodetile,
+                                 detile="no-detile" not in tags, tags=tags,
                                  programs=len({r["program"] for r in recs})))
                 if rc != 0:
                     failures.append("%s %s %s: swell exited %s (log %s.log)" %
@@ -419,7 +423,8 @@ def write_doc(path, runs, records, estimates):
              "driver's compiler reports (instructions; spills; threads or cycles where it "
              "says). `ok` means the program compiled and the driver ran its draw; `refused`: "
              "the driver said it cannot (swell then builds its programs again without the lattice "
-             "of random offsets if that makes the driver refuse fewer, the 'no-detile' rows; "
+             "with the terms of each vertex on the CPU, then without the lattice of random offsets, "
+             "if that makes the driver refuse fewer: the 'cpu-vertex' and 'no-detile' rows; "
              "draws a refused program's rows with a variant fetching fewer patterns; or falls "
              "back to the other quality). Frame rates are estimated "
              "from the compilers' statistics by the cost model below; no GPU ran anything.", ""]

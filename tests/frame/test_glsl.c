@@ -356,11 +356,12 @@ static void test_sky_lookup(void **state)
     sky_destroy(&sky);
 }
 
-/* vshade.c's terms of a vertex (the CPU's, for gles2-min) against vterms.glsl's vertex_terms
- * (ocean.vert's on the tiers with vertex texture fetch), the GPU's in highp, at 2048 vertices
- * from 2 m to 30 km around a camera 10 m up (positions displaced up to 1.5 m, on the curved
- * sea: the farthest have normals facing away, reflected), both qualities: every term within
- * 2e-3 of its range over the vertices (the Ross factor compared in log2; measured: 3.6e-4 for
+/* vshade.c's terms of a vertex (the CPU's, where a driver refuses ocean.vert's) against
+ * vterms.glsl's vertex_terms (ocean.vert's), the GPU's in highp, at 2048 vertices from 2 m to
+ * 30 km around a camera 10 m up (positions displaced up to 1.5 m, on the curved sea: the
+ * farthest have normals facing away, reflected; half with slopes and slope variances of
+ * patterns resolved on the CPU), both qualities: every term within
+ * 2e-3 of its range over the vertices (the Ross factor compared in log2; measured: 3e-4 for
  * the Fresnel uv's derivatives, llvmpipe's asin against libm's, 1e-5 for the rest, the 16-bit
  * read), and every term varies over them. Dropping the sphere's slope from vshade.c's s0
  * fails it (0.24). */
@@ -400,13 +401,14 @@ static void test_vshade(void **state)
         .haze_tau = { 0.12f, 0.25f, 0.5f }, .haze_frame = { 1.0f / 8000.0f, 0.76f },
         .haze_ray = { 0.3f, 0.5f, 0.9f }, .haze_mie = { 0.2f, 0.18f, 0.15f },
     };
-    static float grid[N * GRID_FLOATS], cpu[N * VSHADE_FLOATS], vbuf[N * 7];
+    enum { VF = 11 };   /* per vertex: p, rest, svar, slope, pixel */
+    static float grid[N * GRID_FLOATS], cpu[N * VSHADE_FLOATS], vbuf[N * VF];
     uint32_t seed = 12345u;
 #define VT_RAND() ((seed = seed * 1664525u + 1013904223u) / 4294967296.0f)
     memset(grid, 0, sizeof grid);
     for (int i = 0; i < N; i++) {
         float d = 2.0f * powf(15000.0f, VT_RAND()), az = 2.0f * (float)M_PI * VT_RAND();
-        float *g = grid + (size_t)i * GRID_FLOATS, *v = vbuf + (size_t)i * 7;
+        float *g = grid + (size_t)i * GRID_FLOATS, *v = vbuf + (size_t)i * VF;
         double r2 = (double)d * d;
         g[GRID_A_REST] = d * cosf(az);
         g[GRID_A_REST + 1] = d * sinf(az);
@@ -414,10 +416,19 @@ static void test_vshade(void **state)
         g[GRID_A_POS + 1] = g[GRID_A_REST + 1] + 3.0f * (VT_RAND() - 0.5f);
         g[GRID_A_POS + 2] = 3.0f * (VT_RAND() - 0.5f) - alt -
             (float)(r2 / (EARTH_RADIUS_M + sqrt(EARTH_RADIUS_M * EARTH_RADIUS_M - r2)));
+        /* half the vertices with patterns resolved on the CPU: their slope and variance */
+        if (i % 2) {
+            g[GRID_A_SLOPE] = 0.3f * (VT_RAND() - 0.5f);
+            g[GRID_A_SLOPE + 1] = 0.3f * (VT_RAND() - 0.5f);
+            g[GRID_A_SVAR] = 0.01f * VT_RAND();
+            g[GRID_A_SVAR + 1] = 0.01f * VT_RAND();
+        }
         memcpy(v, g + GRID_A_POS, 3 * sizeof(float));
         memcpy(v + 3, g + GRID_A_REST, 2 * sizeof(float));
-        v[5] = (float)(i % W);
-        v[6] = (float)(i / W);
+        memcpy(v + 5, g + GRID_A_SVAR, 2 * sizeof(float));
+        memcpy(v + 7, g + GRID_A_SLOPE, 2 * sizeof(float));
+        v[9] = (float)(i % W);
+        v[10] = (float)(i / W);
     }
 #undef VT_RAND
     static const char *const names[] = {
@@ -426,7 +437,8 @@ static void test_vshade(void **state)
         "haze_mie"
     };
     enum { NU = sizeof names / sizeof names[0] };
-    static const struct shader_attrib attribs[] = { { "a_p", 0 }, { "a_rest", 1 }, { "a_px", 2 } };
+    static const struct shader_attrib attribs[] = { { "a_p", 0 }, { "a_rest", 1 },
+                                                    { "a_slope", 2 }, { "a_px", 3 } };
     static const int tiers[] = { TIER_GLES2_MIN, -1 };
     static double got[W * H];
     static int covered[W * H];
@@ -439,7 +451,7 @@ static void test_vshade(void **state)
             struct shader_program prog = { 0 };
             GLint loc[NU];
             fn_program(tiers[ti], "fn_vterms.vert", "fn_vterms.frag",
-                       q == 0 ? NULL : "QUALITY_HIGH", names, NU, attribs, 3, &gpu, &prog, loc);
+                       q == 0 ? NULL : "QUALITY_HIGH", names, NU, attribs, 4, &gpu, &prog, loc);
             GLuint vbo;
             glGenBuffers(1, &vbo);
             glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -477,15 +489,14 @@ static void test_vshade(void **state)
                     glUniform3fv(loc[12], 1, f.haze_ray);
                     glUniform3fv(loc[13], 1, f.haze_mie);
                 }
-                for (GLuint a = 0; a < 3; a++)
+                static const int asize[4] = { 3, 4, 2, 2 }, aoff[4] = { 0, 3, 7, 9 };
+                for (GLuint a = 0; a < 4; a++) {
                     glEnableVertexAttribArray(a);
-                glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float), (void *)0);
-                glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
-                                      (void *)(3 * sizeof(float)));
-                glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
-                                      (void *)(5 * sizeof(float)));
+                    glVertexAttribPointer(a, asize[a], GL_FLOAT, GL_FALSE, VF * sizeof(float),
+                                          (void *)(aoff[a] * sizeof(float)));
+                }
                 glDrawArrays(GL_POINTS, 0, N);
-                for (GLuint a = 0; a < 3; a++)
+                for (GLuint a = 0; a < 4; a++)
                     glDisableVertexAttribArray(a);
                 fn_frame_read(got, covered);
                 double worst = 0.0;

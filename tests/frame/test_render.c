@@ -147,6 +147,9 @@ static unsigned g_refuse;    /* renderer_desc.probe_refuse */
 static int g_refused;        /* renderer_stats.refused of the last render */
 static int g_debug_variants; /* renderer_desc.debug_variants */
 static unsigned g_refuse_detile; /* renderer_desc.probe_refuse_detile */
+static unsigned g_refuse_gpu_vertex; /* renderer_desc.probe_refuse_gpu_vertex */
+static int g_cpu_vterms;     /* renderer_desc.cpu_vertex_terms */
+static int g_cpu_vterms_used; /* renderer_stats.cpu_vertex_terms of the last render */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
                    const struct camera *cam, double t, uint8_t *rgba, double *ms)
@@ -177,6 +180,8 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.probe_refuse = g_refuse;
     d.debug_variants = g_debug_variants;
     d.probe_refuse_detile = g_refuse_detile;
+    d.probe_refuse_gpu_vertex = g_refuse_gpu_vertex;
+    d.cpu_vertex_terms = g_cpu_vterms;
     d.detile = g_detile_mode ? g_detile_mode - 1 : g_no_detile ? DETILE_MODE_OFF : DETILE_MODE_ON;
     rc = renderer_create(&d, &r, &err);
     if (rc)
@@ -186,6 +191,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     g_vtf_used = st.vtf;
     g_detile_used = st.detile;
     g_refused = st.refused;
+    g_cpu_vterms_used = st.cpu_vertex_terms;
     if (g_move_sun[0] > 0.0f && (rc = renderer_set_sun(r, g_move_sun[0], g_move_sun[1], &err)))
         fail_msg("renderer_set_sun: %s", err.msg);
     assert_int_equal(fx.ph.be->begin_frame(fx.ph.p, &err), 0);
@@ -335,6 +341,8 @@ static int reset_fixture(void **state)
     g_refuse = 0;
     g_debug_variants = 0;
     g_refuse_detile = 0;
+    g_refuse_gpu_vertex = 0;
+    g_cpu_vterms = 0;
     g_bias_max = 0.0f;
     return 0;
 }
@@ -1411,10 +1419,44 @@ static void test_refused_fallback(void **state)
     gpu_shutdown(&gpu);
 }
 
-/* --detile auto where the driver refuses programs with the lattice (Vivante GC2000: 9 of high
+/* A driver that refuses the vertex shaders evaluating the terms of each vertex (Vivante GC2000,
+ * 256 instructions; renderer_create): on gles2-min they are built again with those terms on the
+ * CPU (vshade.c), every program runs, the lattice stays, and the frame is the one the vertex
+ * shaders draw within RMSE 0.5 (float rounding of two implementations, test_glsl test_vshade;
+ * measured below), both qualities; forcing the CPU terms draws the same frame. */
+static void test_cpu_vertex_terms(void **state)
+{
+    struct camera c;
+    (void)state;
+    surface_camera(&c);
+    for (int q = 0; q < QUALITY_COUNT; q++) {
+        render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img2, NULL);
+        assert_int_equal(g_cpu_vterms_used, 0);
+        g_refuse_gpu_vertex = ~0u;
+        render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img, NULL);
+        g_refuse_gpu_vertex = 0;
+        check_defined(fx.img, "the vertex shaders evaluating the vertex terms refused");
+        double d = rmse_rgb(fx.img, fx.img2);
+        int detile = g_detile_used;
+        print_message("%s: the vertex terms' shaders refused: on the CPU %d, %d refused, detile "
+                      "%d, RMSE %.3f from the frame with them\n", render_quality_name(q),
+                      g_cpu_vterms_used, g_refused, detile, d);
+        assert_int_equal(g_cpu_vterms_used, 1);
+        assert_int_equal(g_refused, 0);
+        assert_int_equal(detile, 1);   /* the fixture's --detile on, kept */
+        assert_true(d < 0.5);
+        g_cpu_vterms = 1;
+        render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img2, NULL);
+        g_cpu_vterms = 0;
+        assert_int_equal(g_cpu_vterms_used, 1);
+        assert_true(rmse_rgb(fx.img, fx.img2) == 0.0);
+    }
+}
+
+/* --detile auto where the driver refuses programs with the lattice (VideoCore IV: 5 of high
  * quality's 12; renderer_create): built again without it, every program runs and every pixel
- * is sea, each pattern read once; where the driver refuses as many without it, the lattice
- * stays. */
+ * is sea, each pattern read once, the vertex terms on the GPU (the CPU's, tried first, change
+ * nothing here); where the driver refuses as many without it, the lattice stays. */
 static void test_detile_refused(void **state)
 {
     struct camera c;
@@ -1428,6 +1470,7 @@ static void test_detile_refused(void **state)
                   g_refused);
     assert_int_equal(g_detile_used, 0);
     assert_int_equal(g_refused, 0);
+    assert_int_equal(g_cpu_vterms_used, 0);   /* the CPU's terms, tried first, fit no more */
     g_refuse_detile = 0;
     g_refuse = ~1u;          /* refused either way */
     render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 30.0f, 0.0f, &c, 1.0, fx.img, NULL);
@@ -1516,6 +1559,7 @@ int main(void)
         cmocka_unit_test_teardown(test_refused_fallback, reset_fixture),
         cmocka_unit_test_teardown(test_debug_variants, reset_fixture),
         cmocka_unit_test_teardown(test_detile_refused, reset_fixture),
+        cmocka_unit_test_teardown(test_cpu_vertex_terms, reset_fixture),
         cmocka_unit_test_teardown(test_baked_tables, reset_fixture),
         cmocka_unit_test_teardown(test_horizon, reset_fixture),
         cmocka_unit_test_teardown(test_horizon_sphere, reset_fixture),
