@@ -428,12 +428,16 @@ def write_doc(path, runs, records, estimates):
              "draws a refused program's rows with a variant fetching fewer patterns; or falls "
              "back to the other quality). Frame rates are estimated "
              "from the compilers' statistics by the cost model below; no GPU ran anything.", ""]
-    lines += ["## Runs", "", "| GPU | tier asked | tier | quality asked | drawn in | exit | programs |",
-              "|---|---|---|---|---|---|---|"]
+    lines += ["## Runs", "", "Build: how swell built the programs it draws with (renderer.c "
+              "renderer_create: as first built, else built again with the terms of each vertex "
+              "on the CPU, 'cpu-vertex', and/or without the lattice of random offsets, "
+              "'no-detile', as low quality always is); programs: every one built on the way.",
+              "", "| GPU | tier asked | tier | quality asked | drawn in | build | exit | programs |",
+              "|---|---|---|---|---|---|---|---|"]
     for r in runs:
-        lines.append("| %s | %s | %s | %s | %s | %s | %d |" % (
-            r["model"], r["tier_asked"], r["tier"], r["quality"], r["drew"], r["exit"],
-            r["programs"]))
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %d |" % (
+            r["model"], r["tier_asked"], r["tier"], r["quality"], r["drew"],
+            r.get("tags") or "as first built", r["exit"], r["programs"]))
     lines += ["", "## Ocean programs per GPU, tier and quality", "",
               "Over the variants (each fetching 0-4 patterns and 0-4 whitecap tables): how many "
               "the driver runs, the largest vertex and fragment shader (instructions as its "
