@@ -112,7 +112,7 @@ static const char *const sky_uniform_names[SU_COUNT] = {
 #define RUN_CONTRAST_MAX 2.0f
 
 /* Ocean program variants: k slots' slopes and the first kw <= k of their whitecaps fetched. */
-#define OCEAN_VARIANTS ((SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1))
+#define OCEAN_VARIANTS RENDERER_OCEAN_VARIANTS
 #define VARIANT(k, kw) ((k) * (SWELL_MAX_PATTERNS + 1) + (kw))
 #define VARIANT_K(v) ((v) / (SWELL_MAX_PATTERNS + 1))
 #define VARIANT_KW(v) ((v) % (SWELL_MAX_PATTERNS + 1))
@@ -290,6 +290,7 @@ int detile_mode_from_name(const char *name)
 /* debug_variants' colours: variant v as red 10 (v + 1) (at most 250), green and blue 0, over
  * a white clear; drawn by blending (GL_ZERO, GL_CONSTANT_COLOR), so the programs are the ones
  * the frame runs and a pixel drawn twice comes out as the product of two colours. */
+_Static_assert(10 * OCEAN_VARIANTS <= 250, "variant_colour's reds stay below the white clear");
 static void variant_colour(int v, float rgba[4])
 {
     rgba[0] = (float)(10 * (v + 1)) / 255.0f;
@@ -1260,14 +1261,6 @@ fail:
     return rc;
 }
 
-/* Where the driver refuses ocean programs (issue 15), built again in the ways that may fit,
- * in order: on gles2-min the terms of each vertex on the CPU (vshade.h: Vivante GC2000 refuses
- * ocean.vert's past its 256 instructions; costs CPU time, not the picture); with --detile auto,
- * without the lattice of random offsets (VideoCore IV runs 7 of high quality's 12 programs
- * with it, 12 without: each pattern then repeats on its tile, the lesser loss than the
- * patterns a refused program's rows go without); both (GC2000: 1, 3 with the CPU's terms, 12
- * with both). The first build the driver refuses nothing of is kept, else the one it refuses
- * least of (the earliest of those): one renderer at a time, so the GPU budget holds. */
 /* One build for renderer_create: 0 and the number of programs refused in *refused, or its
  * error; a driver that runs none of them (SWELL_E_SHADER) counts as refusing all, with no
  * renderer. */
@@ -1279,6 +1272,14 @@ static int create_try(const struct renderer_desc *d, struct renderer **out, int 
     return rc == SWELL_E_SHADER ? 0 : rc;
 }
 
+/* Where the driver refuses ocean programs (issue 15), built again in the ways that may fit,
+ * in order: on gles2-min the terms of each vertex on the CPU (vshade.h: Vivante GC2000 refuses
+ * ocean.vert's past its 256 instructions; costs CPU time, not the picture); with --detile auto,
+ * without the lattice of random offsets (VideoCore IV runs 7 of high quality's 12 programs
+ * with it, 12 without: each pattern then repeats on its tile, the lesser loss than the
+ * patterns a refused program's rows go without); both (GC2000: 1, 3 with the CPU's terms, 12
+ * with both). The first build the driver refuses nothing of is kept, else the one it refuses
+ * least of (the earliest of those): one renderer at a time, so the GPU budget holds. */
 int renderer_create(const struct renderer_desc *desc, struct renderer **out, struct swell_err *err)
 {
     struct swell_err first_err = { 0 };
@@ -1630,10 +1631,9 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform1f(u[OU_SKY_BIAS_MAX], r->gpu->caps.max_lod_bias);
     glUniform3fv(u[OU_SUN_DIR], 1, r->vf.sun_dir);
     {
-        /* aerial perspective (ocean.vert haze): air mass per metre of path from the camera's
-         * height h through the exponential atmosphere, (1 - e^{-h/H}) / h -> 1 / H at the sea;
-         * the horizon terms come from the sky (update_sky_constants). Low quality takes them
-         * in ocean.vert, high in ocean.frag: one name serves both, no program has both. */
+        /* aerial perspective (vertex_frame's haze terms; the horizon's come from the sky,
+         * update_sky_constants). Low quality takes them in ocean.vert, high in ocean.frag:
+         * one name serves both, no program has both. */
         const struct sky_haze *hz = &r->haze;
         glUniform3fv(u[OU_HAZE_TAU], 1, r->vf.haze_tau);
         glUniform3fv(u[OU_HAZE_RAY], 1, r->vf.haze_ray);

@@ -75,7 +75,8 @@ struct renderer_desc {
 
 /* A pixel of a debug_variants frame (RGBA8): the ocean program it was drawn with, as k * 5 + kw
  * (k pattern and kw whitecap fetches, the probe's "ocean k=K kw=KW" names), or one of these. */
-enum { RENDERER_PIXEL_SKY = -1, RENDERER_PIXEL_MIXED = -2 };
+enum { RENDERER_PIXEL_SKY = -1, RENDERER_PIXEL_MIXED = -2,
+       RENDERER_OCEAN_VARIANTS = (SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1) };
 int renderer_pixel_variant(const uint8_t rgba[4]);
 
 struct renderer_stats {

@@ -382,13 +382,12 @@ static int load_tables(struct options *o, struct swell_tables *t, struct swell_e
     return SWELL_OK;
 }
 
-/* Frame loop: everything it needs exists already; it allocates nothing but the PNG path. */
 /* --debug variants: the frame's share of the screen per ocean program (renderer.h
  * renderer_pixel_variant), in the probe's names, on one line. */
 static void print_variant_shares(const struct renderer *r, int frame, const uint8_t *rgba, int w,
                                  int h)
 {
-    enum { NV = (SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1) };
+    enum { NV = RENDERER_OCEAN_VARIANTS };
     size_t count[NV + 2] = { 0 }, n = (size_t)w * (size_t)h;
     for (size_t i = 0; i < n; i++) {
         int v = renderer_pixel_variant(rgba + 4 * i);
@@ -404,6 +403,7 @@ static void print_variant_shares(const struct renderer *r, int frame, const uint
     printf("; mixed %.4f\n", (double)count[NV + 1] / (double)n);
 }
 
+/* Frame loop: everything it needs exists already; it allocates nothing but the PNG path. */
 static int run_frames(const struct options *o, struct platform_handle *ph, struct renderer *r,
                       int is_kms, struct swell_err *err)
 {
@@ -422,7 +422,8 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
                           "rendered (e.g. out/frame%%04d.png)", o->out,
                           frames ? "several" : "unlimited");
     uint8_t *rgba = NULL;
-    if (o->out || is_kms || o->debug_variants) {   /* KMS: screenshots on a key press */
+    if (o->out || is_kms || o->debug_variants) {   /* KMS: screenshots on a key press; never
+                                                    * allocate per frame */
         rgba = malloc((size_t)w * (size_t)h * 4);
         if (!rgba)
             return swell_fail(err, SWELL_E_NOMEM, "no memory for a %dx%d read-back", w, h);
@@ -495,7 +496,8 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (!rc && o->out) {
             char path[MAX_PATH_LEN];
             snprintf(path, sizeof path, o->out, i);
-            rc = ph->be->read_rgba(ph->p, rgba, err);
+            if (!o->debug_variants)   /* else read above */
+                rc = ph->be->read_rgba(ph->p, rgba, err);
             if (!rc)
                 rc = image_write_png(path, rgba, w, h, err);
             if (!rc && o->verbose)
