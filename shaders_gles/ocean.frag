@@ -9,7 +9,8 @@
 // level per draw, the one nearest the LOD the hardware would pick at the run's rows
 // (renderer.c draw_runs), by texture2D of that level's own texture, which has no mips
 // (renderer.c chain_tex); the Fresnel texture, a smooth function of the bumped view, at level
-// 0 likewise, and the sky map at the run's level. Elsewhere the per-pixel implicit LOD.
+// 0 likewise, and the sky map at two neighbouring levels of an atlas blended by the pixel's
+// footprint (sky_run). Elsewhere the per-pixel implicit LOD.
 //
 // Per pixel only what depends on the pixel's own slope moments is evaluated: ocean.vert
 // linearises the rest about the vertex's mean slope s0 (see there), so the pixel adds the
@@ -23,7 +24,12 @@
 
 uniform sampler2D fresnel_tex;      // Hu §5.1: A = Fresnel at the bumped view vector; an
                                     // atlas that also holds the lattice hash (renderer.c)
-uniform sampler2D sky_tex;
+uniform sampler2D sky_tex;           // with SWELL_RUN_LOD an atlas of its levels (sky_run)
+#ifdef SWELL_RUN_LOD
+uniform vec4 sky_run_lod;           // the run's blend of two sky levels: w = x V_FOOT + y; the
+                                    // half texel of each level in its uv (renderer.c set_run_lods)
+uniform vec4 sky_run_blk[2];        // the two levels' blocks in the atlas: scale xy, offset zw
+#endif
 uniform vec2 ds_offset;             // added to the fetched slopes to give ds = s - s0
 uniform vec4 slope_scale[4];        // RGBA8 dequantisation per fragment pattern slot
 uniform vec4 slope_bias[4];
@@ -225,6 +231,20 @@ void add_whitecap(vec4 b, vec4 sc, vec4 mu, float g, vec4 a0, vec4 a1, vec4 a2)
 #endif
 #endif
 
+#ifdef SWELL_RUN_LOD
+// The sky map at the run's footprint: two neighbouring levels of the atlas blended by the
+// pixel's footprint, so the level changes continuously from run to run (no brightness steps).
+vec3 sky_run(vec2 uv)
+{
+    float w = clamp(sky_run_lod.x * V_FOOT + sky_run_lod.y, 0.0, 1.0);
+    vec2 u0 = clamp(uv, vec2(sky_run_lod.z), vec2(1.0 - sky_run_lod.z));
+    vec2 u1 = clamp(uv, vec2(sky_run_lod.w), vec2(1.0 - sky_run_lod.w));
+    vec3 c0 = texture2D(sky_tex, u0 * sky_run_blk[0].xy + sky_run_blk[0].zw).rgb;
+    vec3 c1 = texture2D(sky_tex, u1 * sky_run_blk[1].xy + sky_run_blk[1].zw).rgb;
+    return mix(c0, c1, w);
+}
+
+#endif
 void main()
 {
     g_ds = ds_offset;
@@ -295,9 +315,9 @@ void main()
 #if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint for the run, at a whole
     // level the renderer computes from the run's mean variance (renderer.c set_run_lods) and
-    // binds as that level's own texture: a per-pixel LOD is llvmpipe's slow path (A/B, rough
-    // 1 km: 6.6-6.9x -> 6.0x the quad).
-    vec3 sky = texture2D(sky_tex, uv.zw).rgb * sky_map_scale;
+    // reads from an atlas without mips, two levels blended (sky_run): a per-pixel LOD is
+    // llvmpipe's slow path (A/B, rough 1 km: 6.6-6.9x -> 6.0x the quad).
+    vec3 sky = sky_run(uv.zw) * sky_map_scale;
 #elif defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
     // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
     // widened in each direction to at least the filter's (a max, where a bias multiplies).
@@ -333,7 +353,11 @@ void main()
 #else
     // Low quality: the sky at the pixel's mean slope (no eq. 27 filter), at the run's level
     // with SWELL_RUN_LOD, elsewhere the implicit LOD.
+#ifdef SWELL_RUN_LOD
+    vec3 sky = sky_run(uv.zw) * sky_map_scale;
+#else
     vec3 sky = texture2D(sky_tex, uv.zw).rgb * sky_map_scale;
+#endif
 #endif
 
     // Refracted light, eq. 28.

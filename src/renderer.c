@@ -44,7 +44,7 @@ enum ocean_uniform {
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_SUN,
     OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
     OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
-    OU_VAR_KNOT_FRAME_V, OU_COUNT
+    OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -56,7 +56,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
     "haze_sun", "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
     "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "var_knot_v",
-    "var_knot_frame_v"
+    "var_knot_frame_v", "sky_run_lod", "sky_run_blk"
 };
 
 enum sky_uniform {
@@ -627,10 +627,33 @@ static int upload_single(GLuint tex, int w, int h, const uint8_t *data, const ch
     return upload_chain(&c, w, h, 1, data, what, err);
 }
 
+/* With run_lod the sky map's levels sit in one texture without mips, twice as wide as high
+ * (SWELL_RUN_LOD in ocean.frag reads two neighbouring levels of it per pixel and blends them,
+ * set_run_lods): level 0 at the left, level l >= 1 at x = size, y = size - size / 2^(l-1). */
+static void sky_atlas_at(int size, int l, int *x, int *y)
+{
+    *x = l == 0 ? 0 : size;
+    *y = l == 0 ? 0 : size - (size >> (l - 1));
+}
+
 /* The HDR sky map of high quality: half-float radiances where the tier has half-float
  * textures (no 8-bit steps in the dark zenith), else RGBA8 times sky.map_scale. */
 static int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err *err)
 {
+    if (r->run_lod) {
+        GLenum type = r->sky_half ? gpu_half_type(r->gpu) : GL_UNSIGNED_BYTE;
+        glBindTexture(GL_TEXTURE_2D, r->sky_tex.tex[0]);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        for (int l = 0; l < sk->levels; l++) {
+            int x, y, n = sk->size >> l > 0 ? sk->size >> l : 1;
+            sky_atlas_at(sk->size, l, &x, &y);
+            size_t off = sky_level_offset(sk, l);
+            const void *px = r->sky_half ? (const void *)(sk->half + off)
+                                         : (const void *)(sk->data + off);
+            glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, n, n, GL_RGBA, type, px);
+        }
+        return gpu_check("renderer: sky atlas upload", err);
+    }
     if (r->sky_half)
         return upload_chain_typed(&r->sky_tex, sk->size, sk->size, sk->levels, sk->half,
                                   gpu_half_type(r->gpu), "renderer: sky upload (half)", err);
@@ -829,9 +852,12 @@ static int create_textures(struct renderer *r, struct swell_err *err)
                                  "renderer: background sky table", &r->sky_view_tex, err)))
         return rc;
     r->sky_half = r->gpu->caps.half_float;
-    if ((rc = chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels,
-                           r->sky_half ? FORMAT_RGBA16F : FORMAT_RGBA8, 0, "renderer: sky map",
-                           &r->sky_tex, err)) ||
+    int sky_format = r->sky_half ? FORMAT_RGBA16F : FORMAT_RGBA8;
+    if ((rc = r->run_lod ? gpu_texture_create(r->gpu, 2 * SKY_MAP_SIZE, SKY_MAP_SIZE, 1,
+                                              sky_format, 0, "renderer: sky map atlas",
+                                              &r->sky_tex.tex[0], err)
+                         : chain_create(r, SKY_MAP_SIZE, SKY_MAP_SIZE, r->sky.levels, sky_format,
+                                        0, "renderer: sky map", &r->sky_tex, err)) ||
         (rc = upload_sky(r, &r->sky, err)))
         return rc;
     if (r->vtf && (rc = create_disp_textures(r, err)))
@@ -1720,41 +1746,81 @@ static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
     return key;
 }
 
-/* The levels of a run from its key, bound as textures. In high quality also the sky map's
- * (ocean.frag): eq. 27's footprint 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z), as
- * ocean.vert and ocean.frag take it per pixel, here for the run: sigma^2 the unresolved
- * variance, the top variance of the slots not fetched and each fetched slot's mean
- * within-texel variance at its level (the larger of x and y, as the shader); r_z the reflected
- * view's on a flat sea at the run's middle distance d (squared: d2), at altitude alt. */
-static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float d2, float alt)
+/* Eq. 27's sky footprint (log2 texels) at footprint f (log2 m, ocean.frag V_FOOT) of a row at
+ * squared distance d2 seen from altitude alt, fetching k slots: 2 sigma size du/dzeta with
+ * du/dzeta = 1 / (1 + r_z), as ocean.vert and ocean.frag take it per pixel, here with sigma^2
+ * the unresolved variance, the top variance of the slots not fetched and each fetched slot's
+ * mean within-texel variance at the level f asks (between whole levels geometric: continuous
+ * in f, so neighbouring runs agree where they meet; the larger of x and y, as the shader);
+ * r_z the reflected view's on a flat sea. */
+static float sky_run_foot(const struct renderer *r, int k, float f, float d2, float alt)
 {
-    int sl[SWELL_MAX_PATTERNS] = { 0 }, wl[SWELL_MAX_PATTERNS] = { 0 };
     float var[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
-    if (!r->run_lod)
-        return;
     for (int s = 0; s < r->nfs && s < SWELL_MAX_PATTERNS; s++) {
-        if (s < k) {
-            int lev = (int)((key >> (4 * s)) & 15u);
-            sl[s] = lev;
-            wl[s] = s < kw ? (int)((key >> (16 + 4 * s)) & 15u) : 0;
-            var[0] += r->slot[s].level_var[lev][0];
-            var[1] += r->slot[s].level_var[lev][1];
-        } else {
-            var[0] += r->slot[s].top_slope[2];
-            var[1] += r->slot[s].top_slope[3];
+        const struct fs_slot *sl = &r->slot[s];
+        if (s >= k) {
+            var[0] += sl->top_slope[2];
+            var[1] += sl->top_slope[3];
+            continue;
+        }
+        float x = fminf(fmaxf(f + sl->log2_density[0], 0.0f), (float)sl->top_level[0]);
+        int l0 = (int)floorf(x), l1 = l0 < sl->top_level[0] ? l0 + 1 : l0;
+        for (int c = 0; c < 2; c++) {
+            float v0 = fmaxf(sl->level_var[l0][c], 1e-12f), v1 = fmaxf(sl->level_var[l1][c], 1e-12f);
+            var[c] += v0 * powf(v1 / v0, x - (float)l0);
         }
     }
     float rz = alt / sqrtf(d2 + alt * alt);
-    float foot = 0.5f * log2f(fmaxf(fmaxf(var[0], var[1]), 1e-4f)) +
-                 log2f(2.0f * (float)r->sky.size / (1.0f + rz));
-    int sky = (int)fminf(fmaxf(floorf(foot + 0.5f), 0.0f), (float)(r->sky.levels - 1));
+    return 0.5f * log2f(fmaxf(fmaxf(var[0], var[1]), 1e-4f)) +
+           log2f(2.0f * (float)r->sky.size / (1.0f + rz));
+}
+
+/* The levels of a run from its key, bound as textures, and the sky map's two levels
+ * (ocean.frag SWELL_RUN_LOD): eq. 27's footprint (sky_run_foot) at the run's farthest and
+ * nearest rows (squared distances d2_far, d2_near), as a line in the pixel's footprint V_FOOT
+ * between them, blends level L = floor of the smaller and L + 1, read from the sky atlas
+ * (sky_atlas_at), each clamped half a texel inside its block as clamp-to-edge would. Before,
+ * a run read one whole level: where the next run read another, the brightness stepped (6-9 %
+ * at a 1 km view, test_seams test_brightness_steps). */
+static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float d2_far,
+                         float d2_near, float alt, float pix)
+{
+    int sl[SWELL_MAX_PATTERNS] = { 0 }, wl[SWELL_MAX_PATTERNS] = { 0 };
+    if (!r->run_lod)
+        return;
+    for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
+        sl[s] = (int)((key >> (4 * s)) & 15u);
+        wl[s] = s < kw ? (int)((key >> (16 + 4 * s)) & 15u) : 0;
+    }
+    float f_far = log2f(row_footprint(d2_far, alt, pix) * RUN_LOD_ROW_MEAN);
+    float f_near = log2f(row_footprint(d2_near, alt, pix) * RUN_LOD_ROW_MEAN);
+    float s_far = sky_run_foot(r, k, f_far, d2_far, alt);
+    float s_near = sky_run_foot(r, k, f_near, d2_near, alt);
+    int top = r->sky.levels - 1;
+    int l0 = (int)fminf(fmaxf(floorf(fminf(s_far, s_near)), 0.0f), (float)top);
+    int l1 = l0 < top ? l0 + 1 : l0;
+    /* w = s(V_FOOT) - l0 = a V_FOOT + b */
+    float a = f_far - f_near > 1e-3f ? (s_far - s_near) / (f_far - f_near) : 0.0f;
+    float b = s_near - a * f_near - (float)l0;
+    float blk[2][4];
+    for (int i = 0; i < 2; i++) {
+        int l = i ? l1 : l0, x, y, n = r->sky.size >> l > 0 ? r->sky.size >> l : 1;
+        sky_atlas_at(r->sky.size, l, &x, &y);
+        blk[i][0] = (float)n / (float)(2 * r->sky.size);
+        blk[i][1] = (float)n / (float)r->sky.size;
+        blk[i][2] = (float)x / (float)(2 * r->sky.size);
+        blk[i][3] = (float)y / (float)r->sky.size;
+    }
+    const GLint *u = r->ou[VARIANT(k, kw)];
+    glUniform4f(u[OU_SKY_RUN_LOD], a, b, 0.5f / blk[0][1] / (float)r->sky.size,
+                0.5f / blk[1][1] / (float)r->sky.size);
+    glUniform4fv(u[OU_SKY_RUN_BLK], 2, &blk[0][0]);
     /* no LOD in the shader: each table's level is the texture bound (chain_tex) */
     for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
         bind_tex(UNIT_PATTERNS + s, chain_at(&r->slot[s].slope_tex, sl[s]), -1);
         if (s < kw)
             bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&r->slot[s].wc_tex, wl[s]), -1);
     }
-    bind_tex(UNIT_SKY, chain_at(&r->sky_tex, sky), -1);
 }
 
 /* log2 of the footprint (m, at a row's nearest vertex) from which slots_needed no longer
@@ -2029,7 +2095,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
             }
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
             set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
-            set_run_lods(r, run_k, run_kw, run_key, sqrtf(run_d2_far * run_d2), alt);
+            set_run_lods(r, run_k, run_kw, run_key, run_d2_far, run_d2, alt, pix);
             set_slot_lods(r, run_k, run_kw, run_key, alt, pix,
                           log2f(row_footprint(run_d2_far, alt, pix) * RUN_LOD_ROW_MEAN),
                           log2f(row_footprint(run_d2, alt, pix) * RUN_LOD_ROW_MEAN));
