@@ -313,10 +313,10 @@ void main()
     float foot = 0.5 * log2(max(var.x, var.y)) + v_extra.y;
 #endif
 #if defined(SWELL_RUN_LOD)
-    // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint for the run, at a whole
-    // level the renderer computes from the run's mean variance (renderer.c set_run_lods) and
-    // reads from an atlas without mips, two levels blended (sky_run): a per-pixel LOD is
-    // llvmpipe's slow path (A/B, rough 1 km: 6.6-6.9x -> 6.0x the quad).
+    // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint as the renderer takes
+    // it for the run's rows (renderer.c set_run_lods), read from an atlas without mips, two
+    // levels blended (sky_run): a per-pixel LOD is llvmpipe's slow path (A/B, rough 1 km:
+    // 6.6-6.9x -> 6.0x the quad).
     vec3 sky = sky_run(uv.zw) * sky_map_scale;
 #elif defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
     // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
@@ -351,8 +351,8 @@ void main()
 #endif
 
 #else
-    // Low quality: the sky at the pixel's mean slope (no eq. 27 filter), at the run's level
-    // with SWELL_RUN_LOD, elsewhere the implicit LOD.
+    // Low quality: the sky at the pixel's mean slope (no eq. 27 filter per pixel), with
+    // SWELL_RUN_LOD at the run's footprint (sky_run), elsewhere the implicit LOD.
 #ifdef SWELL_RUN_LOD
     vec3 sky = sky_run(uv.zw) * sky_map_scale;
 #else

@@ -629,11 +629,13 @@ static int upload_single(GLuint tex, int w, int h, const uint8_t *data, const ch
 
 /* With run_lod the sky map's levels sit in one texture without mips, twice as wide as high
  * (SWELL_RUN_LOD in ocean.frag reads two neighbouring levels of it per pixel and blends them,
- * set_run_lods): level 0 at the left, level l >= 1 at x = size, y = size - size / 2^(l-1). */
-static void sky_atlas_at(int size, int l, int *x, int *y)
+ * set_run_lods): level 0 at the left, level l >= 1 at x = size, y = size - size / 2^(l-1).
+ * Returns the level's side, texels. */
+static int sky_atlas_at(int size, int l, int *x, int *y)
 {
     *x = l == 0 ? 0 : size;
     *y = l == 0 ? 0 : size - (size >> (l - 1));
+    return size >> l > 0 ? size >> l : 1;
 }
 
 /* The HDR sky map of high quality: half-float radiances where the tier has half-float
@@ -645,8 +647,7 @@ static int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err
         glBindTexture(GL_TEXTURE_2D, r->sky_tex.tex[0]);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         for (int l = 0; l < sk->levels; l++) {
-            int x, y, n = sk->size >> l > 0 ? sk->size >> l : 1;
-            sky_atlas_at(sk->size, l, &x, &y);
+            int x, y, n = sky_atlas_at(sk->size, l, &x, &y);
             size_t off = sky_level_offset(sk, l);
             const void *px = r->sky_half ? (const void *)(sk->half + off)
                                          : (const void *)(sk->data + off);
@@ -1781,7 +1782,7 @@ static float sky_run_foot(const struct renderer *r, int k, float f, float d2, fl
  * between them, blends level L = floor of the smaller and L + 1, read from the sky atlas
  * (sky_atlas_at), each clamped half a texel inside its block as clamp-to-edge would. Before,
  * a run read one whole level: where the next run read another, the brightness stepped (6-9 %
- * at a 1 km view, test_seams test_brightness_steps). */
+ * at a 1 km view, test_seams test_sky_levels_continuous). */
 static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float d2_far,
                          float d2_near, float alt, float pix)
 {
@@ -1802,18 +1803,17 @@ static void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float 
     /* w = s(V_FOOT) - l0 = a V_FOOT + b */
     float a = f_far - f_near > 1e-3f ? (s_far - s_near) / (f_far - f_near) : 0.0f;
     float b = s_near - a * f_near - (float)l0;
-    float blk[2][4];
+    float blk[2][4], half[2];
     for (int i = 0; i < 2; i++) {
-        int l = i ? l1 : l0, x, y, n = r->sky.size >> l > 0 ? r->sky.size >> l : 1;
-        sky_atlas_at(r->sky.size, l, &x, &y);
+        int x, y, n = sky_atlas_at(r->sky.size, i ? l1 : l0, &x, &y);
         blk[i][0] = (float)n / (float)(2 * r->sky.size);
         blk[i][1] = (float)n / (float)r->sky.size;
         blk[i][2] = (float)x / (float)(2 * r->sky.size);
         blk[i][3] = (float)y / (float)r->sky.size;
+        half[i] = 0.5f / (float)n;
     }
     const GLint *u = r->ou[VARIANT(k, kw)];
-    glUniform4f(u[OU_SKY_RUN_LOD], a, b, 0.5f / blk[0][1] / (float)r->sky.size,
-                0.5f / blk[1][1] / (float)r->sky.size);
+    glUniform4f(u[OU_SKY_RUN_LOD], a, b, half[0], half[1]);
     glUniform4fv(u[OU_SKY_RUN_BLK], 2, &blk[0][0]);
     /* no LOD in the shader: each table's level is the texture bound (chain_tex) */
     for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
