@@ -28,6 +28,9 @@ struct grid_desc {
     int kind;                 /* enum geometry_kind (renderer.h): 0 projected grid, 1 patches */
     int w, h;                 /* projected grid vertices; default 96 x 64 (cells of about 13 x 11 pixels at 1280x720) */
     unsigned cpu_patterns;    /* bit i: pattern i's slope/whitecap moments resolved per vertex */
+    unsigned k_patterns;      /* bit i (not a CPU pattern): its whitecap moments alone resolved
+                               * per vertex (low quality's fragment-shader patterns, whose
+                               * whitecaps no fragment shader fetches) */
     int no_detile;            /* 1: each pattern read once, at no offset (detile.h): its tile
                                * repeats, at the CPU cost before the lattice (swell --detile off) */
 };

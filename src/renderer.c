@@ -225,6 +225,9 @@ struct renderer {
     int nfs;                          /* patterns shaded from textures, largest first */
     int nwc;                          /* leading slots whose whitecaps are fetched (high) */
     unsigned cpu_mask;                /* patterns resolved per vertex */
+    unsigned k_mask;                  /* low quality, CPU grid: fragment patterns whose
+                                       * whitecap moments the grid resolves per vertex
+                                       * (grid.h k_patterns; not the patch's constants) */
     struct fs_slot slot[SWELL_MAX_PATTERNS];
     float *verts;                     /* VTF: the grid parameters; else grid.c's vertices */
     float *shaded;                    /* cpu_vterms: vshade.c's, uploaded each frame */
@@ -1274,6 +1277,17 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     gd.w = r->d.grid_w;
     gd.h = r->d.grid_h;
     gd.cpu_patterns = r->cpu_mask;
+    /* low quality fetches no whitecaps: on a CPU grid the vertices carry the fragment
+     * patterns' foam memory at their footprint's mip level (grid.c k_moment_pass), so eq. 6
+     * per vertex sees the foam's patches as high quality's pixels do; with the patch's
+     * constants alone every vertex had the same coverage (15 m/s from 10 m: low's rows up to
+     * 24 % darker than high's near the camera, now 7 %: test_render test_quality_match) */
+    r->k_mask = 0;
+    for (int s = 0; !r->vtf && r->d.quality != QUALITY_HIGH && s < r->nfs; s++)
+        if (r->slot[s].wc && r->slot[s].wc->format == FORMAT_RGBA8 &&
+            !whitecaps_constant(r->slot[s].wc))
+            r->k_mask |= 1u << r->slot[s].pattern;
+    gd.k_patterns = r->k_mask;
     gd.no_detile = !renderer_detile(r);
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
@@ -1526,9 +1540,12 @@ static int draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_
     return 0;
 }
 
-/* A slot whose whitecaps are not fetched enters Dupuy's sums as its patch's constants. */
-static void add_k_constants(const struct fs_slot *sl, float ck[2])
+/* A slot whose whitecaps are not fetched enters Dupuy's sums as its patch's constants, unless
+ * the grid resolves them per vertex (k_mask). */
+static void add_k_constants(const struct renderer *r, const struct fs_slot *sl, float ck[2])
 {
+    if ((r->k_mask >> sl->pattern) & 1u)
+        return;
     ck[0] += sl->top_k[0];
     ck[1] += sl->top_k[1];
 }
@@ -1616,7 +1633,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
             /* const_slope.xy stays 0: the means are in lin_s0 (ocean.vert) */
             cs[2] += sl->top_slope[2];
             cs[3] += sl->top_slope[3];
-            add_k_constants(sl, ck);
+            add_k_constants(r, sl, ck);
             continue;
         }
         grid_uv_offset(r->t, sl->pattern, cam, off[s]);
@@ -1631,7 +1648,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         if (s < kw)   /* kw <= nwc: whitecap textures exist for these (create_textures) */
             bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&sl->wc_tex, 0), u[OU_WC_TEX0 + s]);
         else
-            add_k_constants(sl, ck);
+            add_k_constants(r, sl, ck);
     }
     sea_light(r, sun, sea, foam);
     glUniformMatrix4fv(u[OU_WORLD_TO_CLIP], 1, GL_FALSE, (const GLfloat *)world_to_clip);
@@ -1740,7 +1757,15 @@ static uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
         return 0;
     float lf = log2f(foot * RUN_LOD_ROW_MEAN);
     for (int s = 0; s < k; s++) {
-        key |= (uint32_t)nearest_level(lf, r->slot[s].log2_density[0]) << (4 * s);
+        /* never the last level fetched before the drop (drop_lod - 1): its means hold a sliver
+         * of the variance and the next level's none, too little for weight_terms' contrast
+         * line to scale up to what the pixel would resolve (its blocky 8x8 texels of a band
+         * several octaves finer), so the texture stepped there. The run keeps the level
+         * before, whose line takes the detail out on the way to the drop: at calm 1 km 45 deg
+         * down, low quality, the seam metric 1.60 -> 1.21 (test_seams) */
+        int lev = nearest_level(lf, r->slot[s].log2_density[0]);
+        int last = r->d.keep_resolved ? RUN_LOD_MAX : r->slot[s].drop_lod - 2;
+        key |= (uint32_t)(lev < last || last < 0 ? lev : last) << (4 * s);
         if (s < kw)
             key |= (uint32_t)nearest_level(lf, r->slot[s].log2_density[1]) << (16 + 4 * s);
     }
@@ -2246,7 +2271,8 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
     int n = snprintf(buf, size,
         "tier: %s (%d texture units)\n"
         "geometry: %s, %s, %d vertices\n"
-        "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x)\n"
+        "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x), whitecaps "
+        "per vertex of mask 0x%x\n"
         "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
         "fetches: per run of rows only the patterns whose mip means still vary there; "
         "whitecaps of %d pattern(s); %s\n"
@@ -2263,7 +2289,8 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                           "them), streamed per frame"
                : "CPU-displaced (no vertex texture fetch), streamed per frame",
         grid_vertex_count(r->grid), r->nfs,
-        r->t->patterns - r->nfs, r->cpu_mask, (unsigned long long)r->stream_bytes, r->nwc,
+        r->t->patterns - r->nfs, r->cpu_mask, r->cpu_mask | r->k_mask,
+        (unsigned long long)r->stream_bytes, r->nwc,
         r->run_lod ? "one level per run, by binding that level's own texture (software "
                      "rasteriser: per-pixel LOD is its slow path)"
                    : "per-pixel LOD",

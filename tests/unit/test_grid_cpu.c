@@ -195,9 +195,11 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
  * with the longer pattern first or second (grid.c sums from the longest, which stores), near
  * the origin and 40 km out (wrapped texture offsets), and with a displacement image narrower
  * than a blend block. */
-/* detile 0: grid_desc no_detile, the reference reads one tap at no offset */
+/* detile 0: grid_desc no_detile, the reference reads one tap at no offset; k_only: pattern 0
+ * is not a CPU pattern but one whose whitecap moments alone are resolved per vertex (grid.h
+ * k_patterns): the same foam memory, no slopes */
 static void check_grid_against_reference(int reversed, int narrow, double cx, double cy,
-                                         int detile)
+                                         int detile, int k_only)
 {
     struct swell_tables s;
     struct grid *g;
@@ -211,7 +213,8 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
     d.tables = &s;
     d.w = w;
     d.h = h;
-    d.cpu_patterns = 1u;
+    d.cpu_patterns = k_only ? 0u : 1u;
+    d.k_patterns = k_only ? 1u : 0u;
     d.no_detile = !detile;
     if (narrow) {
         /* narrower than the lattice's offsets (detile.h): refused, said why */
@@ -312,11 +315,17 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                  * the level's texel: the horizon rows (grid.h) put far vertices on fine levels */
                 double ulp = 2.0 * 1.2e-7 * fmax(fabs(rx), fabs(ry)) * st->width /
                              (s.pattern[0].size_m * (double)(1 << lev));
-                assert_true(fabs(vx[GRID_A_SLOPE] - mean[0]) <= tol_s + 1e-6 + ulp * st->scale[0]);
-                assert_true(fabs(vx[GRID_A_SLOPE + 1] - mean[1]) <=
-                            0.01 * st->scale[1] / 255.0 + 1e-6 + ulp * st->scale[1]);
-                assert_true(fabs(vx[GRID_A_SVAR] - var2) <=
-                            1e-3 * st->scale[2] / 255.0 + 1e-5 + ulp * st->scale[2]);
+                if (k_only) {
+                    for (int k = GRID_A_SLOPE; k < GRID_A_K; k++)
+                        assert_true(vx[k] == 0.0f);
+                } else {
+                    assert_true(fabs(vx[GRID_A_SLOPE] - mean[0]) <=
+                                tol_s + 1e-6 + ulp * st->scale[0]);
+                    assert_true(fabs(vx[GRID_A_SLOPE + 1] - mean[1]) <=
+                                0.01 * st->scale[1] / 255.0 + 1e-6 + ulp * st->scale[1]);
+                    assert_true(fabs(vx[GRID_A_SVAR] - var2) <=
+                                1e-3 * st->scale[2] / 255.0 + 1e-5 + ulp * st->scale[2]);
+                }
                 assert_true(fabs(vx[GRID_A_K] - km) <= tol_w + 1e-6 + ulp * wt->scale[0]);
                 assert_true(fabs(vx[GRID_A_K + 1] - kv) <=
                             0.02 * wt->scale[1] / 255.0 + 1e-5 + ulp * wt->scale[1]);
@@ -333,12 +342,15 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
 static void test_grid_against_reference(void **state)
 {
     (void)state;
-    check_grid_against_reference(0, 0, 1234.5, -321.25, 1);
-    check_grid_against_reference(1, 0, 1234.5, -321.25, 1);
-    check_grid_against_reference(0, 0, -40000.375, 38000.5, 1);
-    check_grid_against_reference(0, 1, 1234.5, -321.25, 1);
-    check_grid_against_reference(0, 0, 1234.5, -321.25, 0);
-    check_grid_against_reference(1, 0, -40000.375, 38000.5, 0);
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 1, 0);
+    check_grid_against_reference(1, 0, 1234.5, -321.25, 1, 0);
+    check_grid_against_reference(0, 0, -40000.375, 38000.5, 1, 0);
+    check_grid_against_reference(0, 1, 1234.5, -321.25, 1, 0);
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 0, 0);
+    check_grid_against_reference(1, 0, -40000.375, 38000.5, 0, 0);
+    /* whitecaps alone per vertex (low quality's fragment patterns) */
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 1, 1);
+    check_grid_against_reference(1, 0, -40000.375, 38000.5, 0, 1);
 }
 
 /* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
