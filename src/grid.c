@@ -1103,25 +1103,35 @@ static void write_vertices(const struct grid *g, float *verts, float z, int cpu,
                    g->blk_foot[b / VBLK] < foot_disp ? g->acc + 4 * (size_t)b : none, z, cpu);
 }
 
+/* Vertex k's mip level of pattern frame f (its footprint's), its texel coordinates there, the
+ * level's width lw (the lattice's offsets are in its texels) and its lattice taps (detile.h).
+ * A CPU pattern's slope and whitecap levels are the same size (grid_create). */
+static inline int vertex_level(const struct grid *g, const struct pattern_frame *f, int k,
+                               double *x, double *y, double *lw, struct detile_taps *t)
+{
+    int lev = mip_level(g->foot[k] * f->lev_k, f->p->levels - 1);
+    *lw = f->p->wc_f[lev].w;
+    *x = f->mx0[lev] + g->rx[k] * f->mk[lev];
+    *y = f->my0[lev] + g->ry[k] * f->mk[lev];
+    detile_at(&f->dt, g->rx[k], g->ry[k], t);
+    return lev;
+}
+
 /* Add CPU pattern f's slope and whitecap moments to every vertex: from the mip level whose
  * texel matches the vertex footprint, the mip texel then holding the footprint's first and
  * second moments (Bruneton §4.1, Dupuy eq. 7-8; of the foam memory m_i, bake.c). */
 static void moment_pass(const struct grid *g, struct pattern_frame *f, float *verts)
 {
     struct grid_pattern *p = f->p;
-    const int top = p->levels - 1;
     /* lanes 0, 1: the mean slope; 2, 3: the resolved variance <s^2> - <s>^2 (floored at 0) */
     const f4 var_lanes = { 0.0f, 0.0f, 1.0f, 1.0f };
     const f4 var_floor = { -INFINITY, -INFINITY, 0.0f, 0.0f };
     _Static_assert(GRID_A_SVAR == GRID_A_SLOPE + 2, "slope mean and variance are one vector");
     for (int k = 0; k < g->nverts; k++) {
         float *vx = verts + (size_t)k * GRID_FLOATS;
-        int lev = mip_level(g->foot[k] * f->lev_k, top);
-        double x = f->mx0[lev] + g->rx[k] * f->mk[lev];
-        double y = f->my0[lev] + g->ry[k] * f->mk[lev];
-        double lw = p->slope_f[lev].w;
+        double x, y, lw;
         struct detile_taps t;
-        detile_at(&f->dt, g->rx[k], g->ry[k], &t);
+        int lev = vertex_level(g, f, k, &x, &y, &lw, &t);
         /* three taps blended (detile.h): means by w_j, variances by w_j^2, the foam memory's
          * deviation from its mean */
         f4 acc = ld4(vx + GRID_A_SLOPE);
@@ -1174,15 +1184,11 @@ static inline void k_taps(struct grid_pattern *p, const struct pattern_frame *f,
 static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *verts)
 {
     struct grid_pattern *p = f->p;
-    const int top = p->levels - 1;
     for (int k = 0; k < g->nverts; k++) {
         float *vx = verts + (size_t)k * GRID_FLOATS;
-        int lev = mip_level(g->foot[k] * f->lev_k, top);
-        double x = f->mx0[lev] + g->rx[k] * f->mk[lev];
-        double y = f->my0[lev] + g->ry[k] * f->mk[lev];
-        double lw = p->wc_f[lev].w;
+        double x, y, lw;
         struct detile_taps t;
-        detile_at(&f->dt, g->rx[k], g->ry[k], &t);
+        int lev = vertex_level(g, f, k, &x, &y, &lw, &t);
         /* the foam memory's deviation from its mean by w_j, its within-texel variance by w_j^2 */
         float km = p->k_mean, kv = 0.0f;
         for (int j = 0; j < (f->dt.hash ? 3 : 1); j++) {
