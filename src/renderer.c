@@ -575,14 +575,33 @@ static void bind_tex(int unit, GLuint tex, GLint loc)
         glUniform1i(loc, unit);
 }
 
+/* Low quality fetches no whitecaps: the fragment patterns whose whitecaps vary, which the CPU
+ * grid's vertices carry at their footprint's mip level (grid.c k_moment_pass), so eq. 6 per
+ * vertex sees the foam's patches as high quality's pixels do; with the patch's constants alone
+ * every vertex had the same coverage (15 m/s from 10 m: low's rows up to 24 % darker than
+ * high's near the camera, now 7 %: test_render test_quality_match). 0 in high quality. */
+static unsigned low_foam_mask(const struct renderer *r)
+{
+    unsigned m = 0;
+    for (int s = 0; r->d.quality != QUALITY_HIGH && s < r->nfs; s++)
+        if (r->slot[s].wc && r->slot[s].wc->format == FORMAT_RGBA8 &&
+            !whitecaps_constant(r->slot[s].wc))
+            m |= 1u << r->slot[s].pattern;
+    return m;
+}
+
 /* Vertex texture fetch pays where the tier has a unit per loop frame for every pattern beside
- * the fragment shader's, and the geometry is the projected grid (patches stay on the CPU). */
+ * the fragment shader's, and the geometry is the projected grid (patches stay on the CPU).
+ * Not for low quality on a sea with foam (low_foam_mask): its vertices' foam comes from the
+ * CPU grid, so low quality draws one sea on every tier (a vertex-shader grid took the
+ * patches' constants: 15 m/s from the surface, rows 44 % apart from gles2-min's,
+ * test_render test_tiers_low). */
 static int choose_vtf(const struct renderer *r)
 {
     GLint combined = 0;
     int n = r->t->patterns;
     int hash = renderer_detile(r);
-    if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask ||
+    if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask || low_foam_mask(r) ||
         r->gpu->caps.vertex_texture_units < 2 * n + hash)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
@@ -1277,16 +1296,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     gd.w = r->d.grid_w;
     gd.h = r->d.grid_h;
     gd.cpu_patterns = r->cpu_mask;
-    /* low quality fetches no whitecaps: on a CPU grid the vertices carry the fragment
-     * patterns' foam memory at their footprint's mip level (grid.c k_moment_pass), so eq. 6
-     * per vertex sees the foam's patches as high quality's pixels do; with the patch's
-     * constants alone every vertex had the same coverage (15 m/s from 10 m: low's rows up to
-     * 24 % darker than high's near the camera, now 7 %: test_render test_quality_match) */
-    r->k_mask = 0;
-    for (int s = 0; !r->vtf && r->d.quality != QUALITY_HIGH && s < r->nfs; s++)
-        if (r->slot[s].wc && r->slot[s].wc->format == FORMAT_RGBA8 &&
-            !whitecaps_constant(r->slot[s].wc))
-            r->k_mask |= 1u << r->slot[s].pattern;
+    r->k_mask = r->vtf ? 0u : low_foam_mask(r);   /* choose_vtf: 0 with vtf */
     gd.k_patterns = r->k_mask;
     gd.no_detile = !renderer_detile(r);
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
