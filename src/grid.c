@@ -1177,13 +1177,30 @@ static inline void k_taps(struct grid_pattern *p, const struct pattern_frame *f,
  * for a CPU pattern, at the mip level of the vertex's footprint: Dupuy's eq. 6 then sees the
  * foam memory's first and second moments there, as high quality's fragment shader does per
  * pixel, where the patch's constants alone gave every vertex the same coverage. Its cost: at
- * 15 m/s from 10 m (two such patterns, 6144 vertices) grid_update 0.80 -> 2.47 M instructions
- * a frame (callgrind), most of it the bilinear samples. One level, as moment_pass: two blended
- * by the footprint took 3.18 M and changed no row-to-row brightness step (storm from 5 m: the
- * largest 8.0 % vs 8.4 %, the foam's own patches). */
+ * 15 m/s from 10 m (two such patterns, 6144 vertices, no lattice) grid_update 0.80 -> 2.01 M
+ * instructions a frame (callgrind), most of it the bilinear samples and their tiles' blends.
+ * One level, as moment_pass: two blended by the footprint took 3.18 M (2.47 M with one) and
+ * changed no row-to-row brightness step (storm from 5 m: the largest 8.0 % vs 8.4 %, the
+ * foam's own patches). */
 static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *verts)
 {
     struct grid_pattern *p = f->p;
+    if (!f->dt.hash) {
+        /* without the lattice (low quality's default) one tap of weight 1, no taps to build:
+         * grid_update 2.47 -> 2.01 M instructions a frame at 15 m/s from 10 m */
+        const int top = p->levels - 1;
+        for (int k = 0; k < g->nverts; k++) {
+            float *vx = verts + (size_t)k * GRID_FLOATS;
+            int lev = mip_level(g->foot[k] * f->lev_k, top);
+            struct texel_at a;
+            texel_locate(&p->wc_f[lev], f->mx0[lev] + g->rx[k] * f->mk[lev],
+                         f->my0[lev] + g->ry[k] * f->mk[lev], &a);
+            f4 q = texel_sample(&p->wc_f[lev], &a);
+            vx[GRID_A_K] += q[0];
+            vx[GRID_A_K + 1] += maxf(q[1] - q[0] * q[0], 0.0f);
+        }
+        return;
+    }
     for (int k = 0; k < g->nverts; k++) {
         float *vx = verts + (size_t)k * GRID_FLOATS;
         double x, y, lw;
