@@ -123,6 +123,8 @@ struct grid_pattern {
     float lambda_m;           /* characteristic wavelength for the eq. 2 weight, m */
     float k_mean;             /* the foam memory's mean over the patch (its top mip texel) */
     int cpu, kcpu, levels;    /* kcpu: its whitecap moments alone per vertex (grid.h) */
+    int k_flat;               /* kcpu: the first level whose texels' means hold less than
+                               * K_FLAT of the foam memory's variance (k_flat_level) */
 };
 
 /* One frame's constants of a CPU pattern for the moment pass: texel coordinates of moment level
@@ -297,6 +299,34 @@ static void image_layout(struct f4_image *im, const struct swell_table *t, int l
     }
     *texels += f4_texels(w, h);
     *tiles += (size_t)tiles_of(w) * (size_t)tiles_of(h);
+}
+
+/* From the level whose texels' means hold less than this fraction of the foam memory's
+ * variance over the patch (the rest within the texels), k_moment_pass takes the patch's top
+ * texel instead of sampling: the means are nearly flat there, and eq. 6 of the top texel's
+ * moments differs little (renderer.c DROP_RESOLVED for the slopes). */
+#define K_FLAT 0.02
+
+/* The first level l of whitecap table t (its first loop frame) from which every coarser level's
+ * means hold less than K_FLAT of the variance: within(top) - within(l) < K_FLAT within(top),
+ * within(l) the mean over level l's texels of <m^2> - <m>^2. */
+static int k_flat_level(const struct swell_table *t)
+{
+    int top = t->levels - 1, flat = top;
+    double within[16];
+    for (int l = 0; l <= top && l < 16; l++) {
+        const uint8_t *px = t->data + table_offset(t, l, 0);
+        size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
+        double acc = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            double m = quantize_decode(t, 0, px[4 * i]), m2 = quantize_decode(t, 1, px[4 * i + 1]);
+            acc += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
+        }
+        within[l] = acc / (double)n;
+    }
+    while (flat > 0 && within[top] - within[flat - 1] < K_FLAT * within[top])
+        flat--;
+    return flat;
 }
 
 /* The float images of pattern i: its displacement, and its moment chains if it is a CPU
@@ -506,6 +536,7 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
                 goto fail;
             }
             p->levels = p->wc->levels;
+            p->k_flat = k_flat_level(p->wc);
         }
         if ((rc = pattern_images(p, i, err)))
             goto fail;
@@ -1176,28 +1207,40 @@ static inline void k_taps(struct grid_pattern *p, const struct pattern_frame *f,
  * fragment-shader patterns, whose whitecaps no fragment shader fetches), as moment_pass does
  * for a CPU pattern, at the mip level of the vertex's footprint: Dupuy's eq. 6 then sees the
  * foam memory's first and second moments there, as high quality's fragment shader does per
- * pixel, where the patch's constants alone gave every vertex the same coverage. Its cost: at
- * 15 m/s from 10 m (two such patterns, 6144 vertices, no lattice) grid_update 0.80 -> 2.01 M
- * instructions a frame (callgrind), most of it the bilinear samples and their tiles' blends.
+ * pixel, where the patch's constants alone gave every vertex the same coverage. From
+ * k_flat up it takes the top texel, unsampled. Its cost (callgrind, rough tables, gles2-min,
+ * no lattice, grid_update + stream_blend a frame): surface 1.45 -> 2.54 M, 1 km 1.01 ->
+ * 1.81 M, 10 km 0.81 -> 1.24 M, most of it the bilinear samples and their tiles' blends.
  * One level, as moment_pass: two blended by the footprint took 3.18 M (2.47 M with one) and
  * changed no row-to-row brightness step (storm from 5 m: the largest 8.0 % vs 8.4 %, the
  * foam's own patches). */
 static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *verts)
 {
     struct grid_pattern *p = f->p;
+    const int top = p->levels - 1;
+    /* from k_flat up the top texel (one texel: one tap at no offset reads it anywhere; its
+     * level follows the loop phase, grid_update) */
+    struct texel_at a0;
+    texel_locate(&p->wc_f[top], 0.0, 0.0, &a0);
+    f4 q_top = texel_sample(&p->wc_f[top], &a0);
+    float v_top = maxf(q_top[1] - q_top[0] * q_top[0], 0.0f);
     if (!f->dt.hash) {
         /* without the lattice (low quality's default) one tap of weight 1, no taps to build:
          * grid_update 2.47 -> 2.01 M instructions a frame at 15 m/s from 10 m */
-        const int top = p->levels - 1;
         for (int k = 0; k < g->nverts; k++) {
             float *vx = verts + (size_t)k * GRID_FLOATS;
             int lev = mip_level(g->foot[k] * f->lev_k, top);
-            struct texel_at a;
-            texel_locate(&p->wc_f[lev], f->mx0[lev] + g->rx[k] * f->mk[lev],
-                         f->my0[lev] + g->ry[k] * f->mk[lev], &a);
-            f4 q = texel_sample(&p->wc_f[lev], &a);
+            f4 q = q_top;
+            float v = v_top;
+            if (lev < p->k_flat) {
+                struct texel_at a;
+                texel_locate(&p->wc_f[lev], f->mx0[lev] + g->rx[k] * f->mk[lev],
+                             f->my0[lev] + g->ry[k] * f->mk[lev], &a);
+                q = texel_sample(&p->wc_f[lev], &a);
+                v = maxf(q[1] - q[0] * q[0], 0.0f);
+            }
             vx[GRID_A_K] += q[0];
-            vx[GRID_A_K + 1] += maxf(q[1] - q[0] * q[0], 0.0f);
+            vx[GRID_A_K + 1] += v;
         }
         return;
     }
@@ -1208,17 +1251,27 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
         int lev = vertex_level(g, f, k, &x, &y, &lw, &t);
         /* the foam memory's deviation from its mean by w_j, its within-texel variance by w_j^2 */
         float km = p->k_mean, kv = 0.0f;
-        for (int j = 0; j < (f->dt.hash ? 3 : 1); j++) {
-            struct texel_at a;
+        for (int j = 0; j < 3; j++) {
             float w = t.w[j];
-            texel_locate(&p->wc_f[lev], x + t.du[j] * lw, y + t.dv[j] * lw, &a);
-            f4 q = texel_sample(&p->wc_f[lev], &a);
+            f4 q = q_top;
+            float v = v_top;
+            if (lev < p->k_flat) {
+                struct texel_at a;
+                texel_locate(&p->wc_f[lev], x + t.du[j] * lw, y + t.dv[j] * lw, &a);
+                q = texel_sample(&p->wc_f[lev], &a);
+                v = maxf(q[1] - q[0] * q[0], 0.0f);
+            }
             km += w * (q[0] - p->k_mean);
-            kv += w * w * maxf(q[1] - q[0] * q[0], 0.0f);
+            kv += w * w * v;
         }
         vx[GRID_A_K] += km;
         vx[GRID_A_K + 1] += kv;
     }
+}
+
+int grid_k_flat_level(const struct swell_table *wc)
+{
+    return k_flat_level(wc);
 }
 
 /* How far the grid reaches: the farthest crest the camera can see over a sphere, its own
@@ -1773,6 +1826,9 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
                 if (p->cpu)
                     image_phase(&p->slope_f[l], &ph);
                 image_phase(&p->wc_f[l], &ph);
+            }
+            if (p->kcpu) {   /* k_moment_pass reads the top texel wherever the vertices are */
+                image_phase(&p->wc_f[top], &ph);
             }
             np++;
         }

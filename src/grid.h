@@ -110,6 +110,11 @@ float grid_band_wavelength(const struct swell_pattern_info *pi);
  * whose texel matches it, floor(log2 r) for r >= 2, else 0, at most levels - 1. */
 int grid_mip_level(float r, int levels);
 
+/* The first level of a k-only pattern's whitecap table from which grid_update takes the top
+ * texel instead of sampling (its coarser levels' means hold under 2 % of the foam memory's
+ * variance). */
+int grid_k_flat_level(const struct swell_table *wc);
+
 /* Bruneton 2010 eq. 2 filter weight w(a, b, x) = 3 x'^2 - 2 x'^3, x' = clamp((x-a)/(b-a)). */
 float grid_filter_weight(float a, float b, float x);
 

@@ -218,23 +218,26 @@ if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
         nm "$swell" | grep -q " [Tt] $f$" || echo "bench: warning: $f not found in $swell (inlined?); callgrind will not see it"
         toggles="$toggles --toggle-collect=$f"
     done
-    # The CPU work depends on the tier and the view, not on the quality, and on the sea state
-    # only through the patterns resolved per vertex: none for calm and rough (same table
-    # sizes), one on gles2-min for storm, whose breaking patterns fill the units (README, which
-    # gives storm's count by hand). One run per tier x path, on the last scene's tables.
+    # The CPU work depends on the tier and the view, on the sea state through the patterns
+    # resolved per vertex (none for calm and rough, one on gles2-min for storm, whose breaking
+    # patterns fill the units; README gives storm's count by hand) and on the quality: low
+    # quality's CPU grid also reads the fragment patterns' whitecap tables per vertex (grid.c
+    # k_moment_pass). One run per tier x path, on the last scene's tables.
     cg_scene=$(set -- $scenes; echo "${!#}")
     # A twentieth of the frame size: the same aspect ratio, so the same projected grid.
     cg_w=$(( ${size%x*} / 20 )); cg_h=$(( ${size#*x} / 20 ))
     [ "$cg_w" -ge 16 ] || cg_w=16; [ "$cg_h" -ge 16 ] || cg_h=16
     # the grid's work depends on the lattice, which auto turns on in high quality and off in
-    # low: both counted then, each scene takes its own
+    # low: both counted then, each scene takes its own, the lattice on in high quality and off
+    # in low (what auto gives each)
     cg_detiles=$(for d in $detiles; do [ "$d" = auto ] && echo on off || echo "$d"; done | tr ' ' '\n' | sort -u)
     for t in $cg_tiers; do for p in $cg_paths; do for d in $cg_detiles; do
         n="$t-$p-detile-$d"
         f="$out/callgrind/$n.out"
         if GALLIUM_DRIVER=softpipe valgrind --tool=callgrind --callgrind-out-file="$f" \
             --collect-atstart=no $toggles "$swell" --platform surfaceless --size "${cg_w}x$cg_h" \
-            --tables "$out/tables/$cg_scene" --path "$p" --tier "$t" --quality high \
+            --tables "$out/tables/$cg_scene" --path "$p" --tier "$t" \
+            --quality "$([ "$d" = off ] && echo low || echo high)" \
             --detile "$d" --frames "$cg_frames" --fps 30 >"$out/logs/callgrind-$n.log" 2>&1; then
             cg_json "$t" "$p" "$d" "$f" >"$out/callgrind/$n.json"
             echo "bench: callgrind $n: $(jq -r '"\(.cpu_instructions_per_frame) instructions/frame (grid_update \(.grid_update_per_frame), vshade_fill \(.vshade_fill_per_frame), stream_blend \(.stream_blend_per_frame))"' "$out/callgrind/$n.json")"

@@ -195,6 +195,9 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
  * with the longer pattern first or second (grid.c sums from the longest, which stores), near
  * the origin and 40 km out (wrapped texture offsets), and with a displacement image narrower
  * than a blend block. */
+/* k-only vertices checked, by lattice (off, on) and by whether they took the flat top texel */
+static int g_k_checked[2][2];
+
 /* detile 0: grid_desc no_detile, the reference reads one tap at no offset; k_only: pattern 0
  * is not a CPU pattern but one whose whitecap moments alone are resolved per vertex (grid.h
  * k_patterns): the same foam memory, no slopes */
@@ -298,11 +301,14 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                     detile_taps(0, (cx + rx) / s.pattern[0].size_m,
                                 (cy + ry) / s.pattern[0].size_m, &tp);
                 double mean[2] = { 0, 0 }, var2 = 0.0, km = k_mean, kv = 0.0;
+                /* k-only: from the flat level up the top texel (grid_k_flat_level) */
+                int klev = k_only && lev >= grid_k_flat_level(wt) ? wt->levels - 1 : lev;
+                g_k_checked[detile != 0][klev != lev] += k_only;
                 for (int tap = 0; tap < 3; tap++) {
                     double m[4], q[4], wj = tp.w[tap];
                     for (int k = 0; k < 4; k++) {
                         m[k] = bilinear(st, lev, &ph[0], u + tp.du[tap], v + tp.dv[tap], k);
-                        q[k] = bilinear(wt, lev, &ph[0], u + tp.du[tap], v + tp.dv[tap], k);
+                        q[k] = bilinear(wt, klev, &ph[0], u + tp.du[tap], v + tp.dv[tap], k);
                     }
                     mean[0] += wj * m[0];
                     mean[1] += wj * m[1];
@@ -348,9 +354,16 @@ static void test_grid_against_reference(void **state)
     check_grid_against_reference(0, 1, 1234.5, -321.25, 1, 0);
     check_grid_against_reference(0, 0, 1234.5, -321.25, 0, 0);
     check_grid_against_reference(1, 0, -40000.375, 38000.5, 0, 0);
-    /* whitecaps alone per vertex (low quality's fragment patterns) */
+    /* whitecaps alone per vertex (low quality's fragment patterns), each table order with and
+     * without the lattice: the synthetic tables' flat levels (grid_k_flat_level) differ, so
+     * both sampled and flat vertices are checked in both */
     check_grid_against_reference(0, 0, 1234.5, -321.25, 1, 1);
     check_grid_against_reference(1, 0, -40000.375, 38000.5, 0, 1);
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 0, 1);
+    check_grid_against_reference(1, 0, -40000.375, 38000.5, 1, 1);
+    for (int d = 0; d < 2; d++)
+        for (int flat = 0; flat < 2; flat++)
+            assert_true(g_k_checked[d][flat] > 10);
 }
 
 /* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
