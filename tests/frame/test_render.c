@@ -654,6 +654,19 @@ static double rmse_rgb(const uint8_t *a, const uint8_t *b)
     return sqrt(se / (W * H * 3.0));
 }
 
+/* The best tier the context offers; the test is skipped (outside CI) where that is gles2-min. */
+static int best_tier(void)
+{
+    struct gpu probe;
+    struct swell_err err;
+    assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
+    int best = probe.caps.tier_available;
+    gpu_shutdown(&probe);
+    if (best == TIER_GLES2_MIN)
+        skip_unless_ci("the context offers no tier above gles2-min");
+    return best;
+}
+
 /* gles2-min (mediump, CPU geometry, eq. 27 by LOD bias) against the best tier the context
  * offers (there: vertex-shader geometry, textureGrad, highp on llvmpipe): RMSE below 4.5 of
  * 255 (measured 3.16; 3.37 before the own LOD was read below 0 (test_horizon_row); 5.55 when
@@ -663,14 +676,8 @@ static double rmse_rgb(const uint8_t *a, const uint8_t *b)
 static void test_tiers(void **state)
 {
     struct camera c;
-    struct gpu probe;
-    struct swell_err err;
     (void)state;
-    assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
-    int best = probe.caps.tier_available;
-    gpu_shutdown(&probe);
-    if (best == TIER_GLES2_MIN)
-        skip_unless_ci("the context offers no tier above gles2-min");
+    int best = best_tier();
     surface_camera(&c);
     g_pixel_lod = 1;
     render(best, QUALITY_HIGH, GEOMETRY_GRID, 35.0f, 120.0f, &c, 2.0, fx.img2, NULL);
@@ -721,14 +728,8 @@ static double worst_row_means(const uint8_t *a, const uint8_t *b, int *at)
 static void test_tiers_low(void **state)
 {
     struct camera c;
-    struct gpu probe;
-    struct swell_err err;
     (void)state;
-    assert_int_equal(gpu_init(&probe, -1, 0, &err), 0);
-    int best = probe.caps.tier_available;
-    gpu_shutdown(&probe);
-    if (best == TIER_GLES2_MIN)
-        skip_unless_ci("the context offers no tier above gles2-min");
+    int best = best_tier();
     surface_camera(&c);
     g_no_detile = 1;
     use_baked(SWELL_BUDGET_DEFAULT, 15.0f);
@@ -1138,21 +1139,8 @@ static void test_quality_match(void **state)
                    fx.img, NULL);
             render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 30.0f, 100.0f, &cams[c], 2.0,
                    fx.img2, NULL);
-            double worst = 0.0;
-            int at = -1;
-            for (int y0 = 0; y0 + 8 <= H; y0 += 8) {
-                double a = 0.0, b = 0.0;
-                for (int y = y0; y < y0 + 8; y++)
-                    for (int x = 0; x < W; x++) {
-                        a += lum(fx.img + 4 * ((size_t)y * W + x));
-                        b += lum(fx.img2 + 4 * ((size_t)y * W + x));
-                    }
-                double d = fabs(a / fmax(b, 1.0) - 1.0);
-                if (d > worst) {
-                    worst = d;
-                    at = y0;
-                }
-            }
+            int at;
+            double worst = worst_row_means(fx.img, fx.img2, &at);
             double bound = w == 1 && c == 0 ? 0.10 : 0.05;
             print_message("low vs high, %.0f m/s, %s: 8-row mean luminance within %.1f %% "
                           "(worst rows %d-%d; held %.0f %%)\n", (double)winds[w], names[c],
