@@ -313,18 +313,8 @@ static void image_layout(struct f4_image *im, const struct swell_table *t, int l
 static int k_flat_level(const struct swell_table *t)
 {
     int top = t->levels - 1, flat = top;
-    double within[16];
-    for (int l = 0; l <= top && l < 16; l++) {
-        const uint8_t *px = t->data + table_offset(t, l, 0);
-        size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
-        double acc = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            double m = quantize_decode(t, 0, px[4 * i]), m2 = quantize_decode(t, 1, px[4 * i + 1]);
-            acc += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
-        }
-        within[l] = acc / (double)n;
-    }
-    while (flat > 0 && within[top] - within[flat - 1] < K_FLAT * within[top])
+    float all = table_level_within_var(t, top, 0, 1);
+    while (flat > 0 && all - table_level_within_var(t, flat - 1, 0, 1) < K_FLAT * all)
         flat--;
     return flat;
 }
@@ -1183,24 +1173,22 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
     }
 }
 
-/* Pattern f's foam memory moments (mean, second moment; Dupuy eq. 7-8) at level lev, three
- * taps blended as moment_pass does: the mean's deviation by w_j, the within-texel variance by
- * w_j^2 (returned in [1]). */
-static inline void k_taps(struct grid_pattern *p, const struct pattern_frame *f,
-                          const struct detile_taps *t, int lev, double rx, double ry, float out[2])
+/* The foam memory's mean and within-texel variance <m^2> - <m>^2 (floored at 0) of k-only
+ * pattern p at texel coordinates (x, y) of level lev; from its flat level up the top texel's,
+ * flat (unless NULL: sampled). */
+static inline void k_texel(struct grid_pattern *p, int lev, double x, double y,
+                           const float flat[2], float out[2])
 {
-    double x = f->mx0[lev] + rx * f->mk[lev], y = f->my0[lev] + ry * f->mk[lev];
-    double lw = p->wc_f[lev].w;
-    out[0] = p->k_mean;
-    out[1] = 0.0f;
-    for (int j = 0; j < (f->dt.hash ? 3 : 1); j++) {
-        struct texel_at a;
-        float w = t->w[j];
-        texel_locate(&p->wc_f[lev], x + t->du[j] * lw, y + t->dv[j] * lw, &a);
-        f4 q = texel_sample(&p->wc_f[lev], &a);
-        out[0] += w * (q[0] - p->k_mean);
-        out[1] += w * w * maxf(q[1] - q[0] * q[0], 0.0f);
+    if (flat && lev >= p->k_flat) {
+        out[0] = flat[0];
+        out[1] = flat[1];
+        return;
     }
+    struct texel_at a;
+    texel_locate(&p->wc_f[lev], x, y, &a);
+    f4 q = texel_sample(&p->wc_f[lev], &a);
+    out[0] = q[0];
+    out[1] = maxf(q[1] - q[0] * q[0], 0.0f);
 }
 
 /* Add pattern f's whitecap moments alone to every vertex (grid.h k_patterns: low quality's
@@ -1220,27 +1208,19 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
     const int top = p->levels - 1;
     /* from k_flat up the top texel (one texel: one tap at no offset reads it anywhere; its
      * level follows the loop phase, grid_update) */
-    struct texel_at a0;
-    texel_locate(&p->wc_f[top], 0.0, 0.0, &a0);
-    f4 q_top = texel_sample(&p->wc_f[top], &a0);
-    float v_top = maxf(q_top[1] - q_top[0] * q_top[0], 0.0f);
+    float q_top[2];
+    k_texel(p, top, 0.0, 0.0, NULL, q_top);
     if (!f->dt.hash) {
         /* without the lattice (low quality's default) one tap of weight 1, no taps to build:
          * grid_update 2.47 -> 2.01 M instructions a frame at 15 m/s from 10 m */
         for (int k = 0; k < g->nverts; k++) {
             float *vx = verts + (size_t)k * GRID_FLOATS;
             int lev = mip_level(g->foot[k] * f->lev_k, top);
-            f4 q = q_top;
-            float v = v_top;
-            if (lev < p->k_flat) {
-                struct texel_at a;
-                texel_locate(&p->wc_f[lev], f->mx0[lev] + g->rx[k] * f->mk[lev],
-                             f->my0[lev] + g->ry[k] * f->mk[lev], &a);
-                q = texel_sample(&p->wc_f[lev], &a);
-                v = maxf(q[1] - q[0] * q[0], 0.0f);
-            }
+            float q[2];
+            k_texel(p, lev, f->mx0[lev] + g->rx[k] * f->mk[lev],
+                    f->my0[lev] + g->ry[k] * f->mk[lev], q_top, q);
             vx[GRID_A_K] += q[0];
-            vx[GRID_A_K + 1] += v;
+            vx[GRID_A_K + 1] += q[1];
         }
         return;
     }
@@ -1252,17 +1232,10 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
         /* the foam memory's deviation from its mean by w_j, its within-texel variance by w_j^2 */
         float km = p->k_mean, kv = 0.0f;
         for (int j = 0; j < 3; j++) {
-            float w = t.w[j];
-            f4 q = q_top;
-            float v = v_top;
-            if (lev < p->k_flat) {
-                struct texel_at a;
-                texel_locate(&p->wc_f[lev], x + t.du[j] * lw, y + t.dv[j] * lw, &a);
-                q = texel_sample(&p->wc_f[lev], &a);
-                v = maxf(q[1] - q[0] * q[0], 0.0f);
-            }
+            float w = t.w[j], q[2];
+            k_texel(p, lev, x + t.du[j] * lw, y + t.dv[j] * lw, q_top, q);
             km += w * (q[0] - p->k_mean);
-            kv += w * w * v;
+            kv += w * w * q[1];
         }
         vx[GRID_A_K] += km;
         vx[GRID_A_K + 1] += kv;

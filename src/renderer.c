@@ -480,25 +480,8 @@ static float log2_density(const struct swell_table *t, float size_m)
 
 /* What the run LOD (draw_runs) needs of a slot's tables, once: their texels per metre, and per
  * mip level of the slope table's first loop frame (Bruneton §4.1) the mean over its texels of
- * the within-texel variance <s^2> - <s>^2, x and y: what a pixel fetching that level resolves
- * below itself. */
-/* The mean over level l's texels of the first loop frame of the within-texel variance
- * <m^2> - <m>^2 of channel cm, its second moment in channel cs; 0 where not RGBA8. */
-static float level_within_var(const struct swell_table *t, int l, int cm, int cs)
-{
-    if (l >= t->levels || t->format != FORMAT_RGBA8)
-        return 0.0f;
-    const uint8_t *px = t->data + table_offset(t, l, 0);
-    size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
-    double acc = 0.0;
-    for (size_t i = 0; i < n; i++) {
-        double m = quantize_decode(t, cm, px[4 * i + cm]);
-        double m2 = quantize_decode(t, cs, px[4 * i + cs]);
-        acc += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
-    }
-    return (float)(acc / (double)n);
-}
-
+ * the within-texel variance <s^2> - <s>^2 (table_level_within_var), x and y: what a pixel
+ * fetching that level resolves below itself. */
 /* The correlation of level l's slope detail (the differences of neighbouring texels' mean
  * slopes, channels 0, 1: the high-pass a viewer sees) between consecutive loop frames f and
  * f + 1 (mod F), over every frame pair; 1 where the level does not vary. */
@@ -546,9 +529,9 @@ static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
     sl->log2_density[0] = log2_density(t, size_m);
     sl->log2_density[1] = log2_density(sl->wc, size_m);
     for (int l = 0; l < SLOT_LEVELS; l++) {
-        sl->level_var[l][0] = level_within_var(t, l, 0, 2);
-        sl->level_var[l][1] = level_within_var(t, l, 1, 3);
-        sl->level_kvar[l] = level_within_var(sl->wc, l, 0, 1);
+        sl->level_var[l][0] = table_level_within_var(t, l, 0, 2);
+        sl->level_var[l][1] = table_level_within_var(t, l, 1, 3);
+        sl->level_kvar[l] = table_level_within_var(sl->wc, l, 0, 1);
         sl->level_rho[l] = level_frame_rho(t, l);
         sl->level_within[l] = sl->level_var[l][0] + sl->level_var[l][1];
     }
@@ -1296,7 +1279,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     gd.w = r->d.grid_w;
     gd.h = r->d.grid_h;
     gd.cpu_patterns = r->cpu_mask;
-    r->k_mask = r->vtf ? 0u : low_foam_mask(r);   /* choose_vtf: 0 with vtf */
+    r->k_mask = low_foam_mask(r);   /* never with vtf (choose_vtf) */
     gd.k_patterns = r->k_mask;
     gd.no_detile = !renderer_detile(r);
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||

@@ -1,4 +1,5 @@
 #include "tables.h"
+#include "quantize.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -166,4 +167,19 @@ int table_name_valid(const char *name)
     if (n == 0 || n > 31)
         return 0;
     return strspn(name, "abcdefghijklmnopqrstuvwxyz0123456789_") == n;
+}
+
+float table_level_within_var(const struct swell_table *t, int l, int cm, int cs)
+{
+    if (l >= t->levels || t->format != FORMAT_RGBA8)
+        return 0.0f;
+    const uint8_t *px = t->data + table_offset(t, l, 0);
+    size_t n = (size_t)table_level_width(t, l) * (size_t)table_level_height(t, l);
+    double acc = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double m = quantize_decode(t, cm, px[4 * i + cm]);
+        double m2 = quantize_decode(t, cs, px[4 * i + cs]);
+        acc += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
+    }
+    return (float)(acc / (double)n);
 }

@@ -96,6 +96,10 @@ size_t table_level_bytes(const struct swell_table *t, int level);  /* one layer 
 size_t table_offset(const struct swell_table *t, int level, int layer);
 int table_level_width(const struct swell_table *t, int level);   /* max(1, width >> level) */
 int table_level_height(const struct swell_table *t, int level);
+/* The mean over level l's texels of the first loop frame of the within-texel variance
+ * <m^2> - <m>^2 of channel cm, its second moment in channel cs (floored at 0 per texel); 0
+ * where t has no level l or is not RGBA8. */
+float table_level_within_var(const struct swell_table *t, int l, int cm, int cs);
 
 /* 1 when name is 1-31 characters of [a-z0-9_] (table names become file names: no paths). */
 int table_name_valid(const char *name);

@@ -1110,14 +1110,14 @@ static void test_resolved_drop(void **state)
  * sun and effective Fresnel, without the whitecap tables, eq. 27's sky filter and the haze per
  * pixel. On baked seas of 8 and 15 m/s wind, gles2-min, the lattice off in both (so both read
  * the same texels), from the surface, 1 km and 10 km: every 8 rows' mean luminance within 5 %
- * of high's (measured 3.1-3.5 %; 1.9-4.5 % before the foam per vertex, 1.0-3.6 % before the
+ * of high's (measured 3.1-3.4 %; 1.9-4.5 % before the foam per vertex, 1.0-3.6 % before the
  * tone map on the largest channel; Hu's single pass of before: 25-47 % darker at 1 km, the
  * distant glitter gone), except at the surface in a breaking sea: low fetches no whitecap
  * tables, and its vertices carry the fragment patterns' foam memory at their footprint's mip
  * level (grid.c k_moment_pass), so low shows high's patches of foam, softer at the spacing of
  * the vertices: held at 10 % there, measured 7.1 % (24 % when low took eq. 6 from the
  * patches' constants alone: the same coverage at every vertex, no patches). At 1 km in that
- * sea 3.5 % (5.0 % with the constants). */
+ * sea 2.9 % (5.0 % with the constants). */
 static void test_quality_match(void **state)
 {
     struct camera cams[3];

@@ -57,7 +57,7 @@
 #define WIN 4                  /* rows per window (issue 14) */
 #define SEAM_ISSUE 1.5         /* issue 14: windows on either side of a row within 1.5x */
 #define SEAM_MAX_HIGH 1.5      /* held: the issue's (measured 1.36; before the fades 6.2) */
-#define SEAM_MAX_LOW 1.5       /* held: the issue's (measured 1.45; 1.60 on one view of 70
+#define SEAM_MAX_LOW 1.5       /* held: the issue's (measured 1.37; 1.60 on one view of 70
                                   before a run's level stopped short of a pattern's drop,
                                   renderer.c run_lod_key; before the fades 10.4) */
 #define BRIGHT_MAX 0.05         /* brightness step across a row, relative to the reference's:
