@@ -16,6 +16,7 @@
 #include "fsutil.h"
 #include "shader.h"
 #include "tables.h"
+#include "upscale.h"
 
 #define JSON_MAX 8192
 
@@ -239,11 +240,16 @@ static int scene_frame(const struct bench_desc *d, struct bench_counter *c, doub
     if (d->path > CAMERA_PATH_NONE)
         camera_path_at(d->path, t, &cam);
     double t0 = now_ms();
+    struct upscale *up = d->upscale;
     int rc = d->ph->be->begin_frame(d->ph->p, err);
     if (!rc) {
         if (c)
             bench_counter_start(c);
-        rc = renderer_frame(d->renderer, &cam, t, w, h, err);
+        if (up)
+            upscale_begin(up);
+        rc = renderer_frame(d->renderer, &cam, t, up ? up->w : w, up ? up->h : h, err);
+        if (!rc && up)
+            rc = upscale_end(up, err);
         if (c)
             *instr = bench_counter_stop(c);
     }
@@ -315,6 +321,7 @@ int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell
     out->ratio = out->quad.median_ms > 0 ? out->frame.median_ms / out->quad.median_ms : 0.0;
     out->width = w;
     out->height = h;
+    out->scale = d->upscale ? (double)d->upscale->w / w : 1.0;
     out->warmup = warmup;
     out->frames = frames;
     out->step_s = step;
@@ -414,6 +421,7 @@ int bench_format_json(const struct bench_result *r, char *buf, size_t cap)
     jstr(&b, "gl_renderer", r->gl_renderer);
     jput(&b, "  \"size\": \"%dx%d\",\n  \"width\": %d,\n  \"height\": %d,\n", r->width,
          r->height, r->width, r->height);
+    jnum(&b, "scale", r->scale, 1);
     jput(&b, "  \"warmup_frames\": %d,\n  \"frames\": %d,\n", r->warmup, r->frames);
     jnum(&b, "step_s", r->step_s, 1);
     jnum(&b, "ms_median", r->frame.median_ms, r->frame.n > 0);
@@ -463,9 +471,12 @@ void bench_format_summary(const struct bench_result *r, char *buf, size_t cap)
         snprintf(cpu, sizeof cpu, "%.2f M instr/frame", r->cpu_instructions_per_frame / 1e6);
     else
         snprintf(cpu, sizeof cpu, "CPU instr n/a");
-    snprintf(buf, cap, "bench: %s %s %s %s %dx%d: median %.2f ms, p95 %.2f ms over %d frames; "
+    char scale[32] = "";
+    if (r->scale > 0 && r->scale < 1)
+        snprintf(scale, sizeof scale, " scale %.2f", r->scale);
+    snprintf(buf, cap, "bench: %s %s %s %s %dx%d%s: median %.2f ms, p95 %.2f ms over %d frames; "
              "quad %.2f ms; ratio %.2f; %s; GPU %.2f MiB",
              r->scene[0] ? r->scene : "-", r->path, r->tier, r->quality, r->width, r->height,
-             r->frame.median_ms, r->frame.p95_ms, r->frames, r->quad.median_ms, r->ratio, cpu,
+             scale, r->frame.median_ms, r->frame.p95_ms, r->frames, r->quad.median_ms, r->ratio, cpu,
              r->bytes_gpu / 1048576.0);
 }

@@ -19,6 +19,8 @@
 #include "platform.h"
 #include "renderer.h"
 
+struct upscale;
+
 #define BENCH_DEFAULT_FRAMES 100    /* timed frames (issue 5: >= 100 after warm-up) */
 #define BENCH_DEFAULT_WARMUP 10
 #define BENCH_QUAD_SIZE 512         /* baseline texture side, texels */
@@ -53,6 +55,8 @@ struct bench_desc {
     struct platform_handle *ph;     /* not owned */
     struct renderer *renderer;      /* not owned */
     struct gpu *gpu;                /* the renderer's accounting; not owned */
+    struct upscale *upscale;        /* render scale (upscale.h): the scene drawn into its
+                                       target and stretched; NULL = none. not owned */
     const char *shader_dir;         /* baseline shaders; default "shaders_gles" */
     struct camera camera;           /* used when path is CAMERA_PATH_NONE */
     int path;                       /* enum camera_path */
@@ -70,6 +74,7 @@ struct bench_result {
     char scene[64], tier[16], quality[16], geometry[16], path[16], platform[16], detile[8];
     char gl_renderer[128];
     int width, height, warmup, frames;
+    double scale;                   /* render scale: 1, or the upscale's share of each side */
     double step_s;
     struct bench_stats frame;       /* the scene */
     struct bench_stats quad;        /* the baseline quad */

@@ -49,3 +49,20 @@ void capture_end(struct capture *c, char *text, size_t size)
     fclose(c->file);
     c->file = NULL;
 }
+
+/* What the drivers swell targets print when they cannot run a shader they compiled and linked:
+ * etnaviv past its instruction or register limits, vc4 out of registers, lima's vertex
+ * processor past 512 instructions, and their compile failures. */
+static const char *const refusal_text[] = {
+    "not okay", "Failed to register allocate", "compile failed", "failed to compile",
+    "Failed to compile", "exceeds maximum", "exceeds limit", "fail schedule", "gpir: fail",
+    "ppir: fail",
+};
+
+int capture_refused(const char *text)
+{
+    for (size_t i = 0; i < sizeof refusal_text / sizeof refusal_text[0]; i++)
+        if (strstr(text, refusal_text[i]))
+            return 1;
+    return 0;
+}

@@ -20,5 +20,7 @@ void capture_begin(struct capture *c);
 /* Stop: restore fd 2, write what was captured to it, and keep its first size - 1 bytes in
  * text (NUL-terminated). */
 void capture_end(struct capture *c, char *text, size_t size);
+/* 1 if captured text holds a driver's word that it cannot run a program it built. */
+int capture_refused(const char *text);
 
 #endif

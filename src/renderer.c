@@ -1062,23 +1062,6 @@ static int update_sky_view(struct renderer *r, double alt_m, struct swell_err *e
 }
 
 
-/* What the drivers swell targets print when they cannot run a shader they compiled and linked
- * (capture.h): etnaviv past its instruction or register limits, vc4 out of registers, lima's
- * vertex processor past 512 instructions, and their compile failures. */
-static const char *const refusal_text[] = {
-    "not okay", "Failed to register allocate", "compile failed", "failed to compile",
-    "Failed to compile", "exceeds maximum", "exceeds limit", "fail schedule", "gpir: fail",
-    "ppir: fail",
-};
-
-static int refused_in(const char *text)
-{
-    for (size_t i = 0; i < sizeof refusal_text / sizeof refusal_text[0]; i++)
-        if (strstr(text, refusal_text[i]))
-            return 1;
-    return 0;
-}
-
 static int variant_exists(const struct renderer *r, int k, int kw)
 {
     return k >= 0 && k <= r->nfs && kw >= 0 && kw <= (k < r->nwc ? k : r->nwc) &&
@@ -1182,7 +1165,7 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
             unsigned refuse = r->d.probe_refuse |
                               (renderer_detile(r) ? r->d.probe_refuse_detile : 0u) |
                               (r->cpu_vterms ? 0u : r->d.probe_refuse_gpu_vertex);
-            r->variant_ok[v] = !rc && !refused_in(text) && covered &&
+            r->variant_ok[v] = !rc && !capture_refused(text) && covered &&
                                !((refuse >> (v & 31)) & 1u);
             if (label)
                 fprintf(stderr, "swell-program: end %s\n", r->variant_ok[v] ? "ok" : "refused");
@@ -1197,7 +1180,7 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
         up.pitch_deg = r->d.sun_elev_deg;
         r->probing = 2;
         int refused = probe_draw(r, &up, label ? "sky" : NULL, text, sizeof text) ||
-                      refused_in(text);
+                      capture_refused(text);
         if (refused)
             fprintf(stderr, "swell: the driver refused the sky's programs: no sky will be "
                     "drawn behind the sea\n");

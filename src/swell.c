@@ -23,6 +23,7 @@
 #include "preset.h"
 #include "renderer.h"
 #include "tables_io.h"
+#include "upscale.h"
 
 #define SWELL_VERSION "0.1.0"
 #define DEFAULT_FPS 30.0
@@ -47,6 +48,7 @@ struct options {
     int debug_uncovered;        /* --debug uncovered */
     int debug_variants;         /* --debug variants */
     int detile;                 /* --detile: enum detile_mode */
+    double scale;               /* --scale: render scale (upscale.h); 0 = 1 */
     int verbose;
     int bench;                  /* --bench: time frames against the baseline quad */
     int warmup;                 /* --warmup: untimed bench frames; -1 = default */
@@ -94,6 +96,9 @@ static void usage(FILE *f)
 "                    pattern repeats on its tile (2-3.5x the frame on llvmpipe) | off:\n"
 "                    read once, the tiles repeat | auto: on in high quality, off in\n"
 "                    low                                                         [auto]\n"
+"  --scale S         render scale: the frame drawn at S x the output's size and\n"
+"                    stretched over it, bilinear (0.25..1; S^2 of the pixels shaded:\n"
+"                    for GPUs too slow to shade every pixel, docs/devices.md)         [1]\n"
 "KMS:\n"
 "  --device PATH     DRM device such as /dev/dri/card0       [first with a display]\n"
 "  --connector NAME  connector such as HDMI-A-1 or Virtual-1    [first connected]\n"
@@ -175,7 +180,7 @@ static int is_value_option(const char *a)
         "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
         "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode", "--kms-api",
-        "--warmup", "--results", "--scene", "--debug", "--detile",
+        "--warmup", "--results", "--scene", "--debug", "--detile", "--scale",
     };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (!strcmp(a, names[i]))
@@ -296,6 +301,9 @@ static int parse_args(int argc, char **argv, struct options *o)
             o->detile = detile_mode_from_name(v);
             if (o->detile < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--detile: '%s' is not auto, on or off", v);
+        } else if (!strcmp(a, "--scale")) {
+            r = parse_double(a, v, UPSCALE_MIN, UPSCALE_MAX, "x the output's size",
+                             &o->scale, &err);
         } else if (!strcmp(a, "--device")) {
             o->platform.device = v;
             if (!v[0])
@@ -348,6 +356,11 @@ static int parse_args(int argc, char **argv, struct options *o)
     if (o->bench && (o->out || o->duration_s > 0 || o->frames == 0)) {
         fprintf(stderr, "swell: --bench times a fixed number of frames (--frames N, N >= 1) "
                 "and writes no PNG: drop --out/--duration\n");
+        return 2;
+    }
+    if (o->debug_variants && o->scale > 0 && o->scale < 1) {
+        fprintf(stderr, "swell: --debug variants counts the pixels each program draws, which "
+                "the stretch of --scale blends: give --scale 1\n");
         return 2;
     }
     if (o->out && o->frames != 1 && out_conversions(o->out) == 0 &&
@@ -405,7 +418,7 @@ static void print_variant_shares(const struct renderer *r, int frame, const uint
 
 /* Frame loop: everything it needs exists already; it allocates nothing but the PNG path. */
 static int run_frames(const struct options *o, struct platform_handle *ph, struct renderer *r,
-                      int is_kms, struct swell_err *err)
+                      struct upscale *up, int is_kms, struct swell_err *err)
 {
     int w = 0, h = 0;
     ph->be->size(ph->p, &w, &h);
@@ -480,8 +493,12 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (o->path > CAMERA_PATH_NONE)
             camera_path_at(o->path, t, &cam);
         rc = ph->be->begin_frame(ph->p, err);
+        if (!rc && up)
+            upscale_begin(up);
         if (!rc)
-            rc = renderer_frame(r, &cam, t, w, h, err);
+            rc = renderer_frame(r, &cam, t, up ? up->w : w, up ? up->h : h, err);
+        if (!rc && up)
+            rc = upscale_end(up, err);
         if (!rc)
             rc = ph->be->present(ph->p, err);
         if (!rc && o->verbose) {
@@ -524,10 +541,10 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
 
 /* --bench: bench.c runs the frames; this prints the one-line summary and writes --results. */
 static int run_bench(const struct options *o, struct platform_handle *ph, struct gpu *g,
-                     struct renderer *r, struct swell_err *err)
+                     struct renderer *r, struct upscale *up, struct swell_err *err)
 {
     struct bench_desc bd = {
-        .ph = ph, .renderer = r, .gpu = g, .camera = o->camera, .path = o->path,
+        .ph = ph, .renderer = r, .gpu = g, .upscale = up, .camera = o->camera, .path = o->path,
         .time0_s = o->time0_s, .step_s = 1.0 / (o->fps > 0 ? o->fps : DEFAULT_FPS),
         .warmup = o->warmup < 0 ? 0 : o->warmup == 0 ? -1 : o->warmup,
         .frames = o->frames > 0 ? o->frames : 0,
@@ -554,11 +571,15 @@ static int run_bench(const struct options *o, struct platform_handle *ph, struct
 }
 
 static void print_start(const struct options *o, const struct platform_handle *ph,
-                        const struct gpu *g, const struct swell_tables *t, struct renderer *r)
+                        const struct gpu *g, const struct swell_tables *t, struct renderer *r,
+                        const struct upscale *up)
 {
     int w = 0, h = 0;
     ph->be->size(ph->p, &w, &h);
     printf("swell: platform %s, %dx%d\n", ph->be->name, w, h);
+    if (up)
+        printf("swell: render scale %.2f: the frame drawn at %dx%d, stretched over %dx%d\n",
+               o->scale, up->w, up->h, w, h);
     printf("swell: GL %s | %s | %s\n", g->caps.vendor, g->caps.renderer, g->caps.version);
     printf("swell: tier %s (available %s%s)\n", gpu_tier_name(g->caps.tier),
            gpu_tier_name(g->caps.tier_available), o->tier >= 0 ? ", forced" : "");
@@ -644,12 +665,26 @@ int main(int argc, char **argv)
     }
     if (rc)
         goto fail_gpu;
-    print_start(&o, &ph, &gpu, &tables, r);
-    if (o.bench ? run_bench(&o, &ph, &gpu, r, &err)
-                : run_frames(&o, &ph, r, ph.be == &platform_kms_backend, &err))
-        goto fail_renderer;
+    struct upscale up_store, *up = NULL;
+    if (o.scale > 0 && o.scale < 1) {
+        /* the output's framebuffer is bound here (the platform's; the probe restored it) */
+        int w = 0, h = 0;
+        GLint depth_bits = 0;
+        ph.be->size(ph.p, &w, &h);
+        glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+        if (upscale_create(&up_store, &gpu, w, h, o.scale, depth_bits, NULL, &err))
+            goto fail_renderer;
+        up = &up_store;
+    }
+    print_start(&o, &ph, &gpu, &tables, r, up);
+    if (o.bench ? run_bench(&o, &ph, &gpu, r, up, &err)
+                : run_frames(&o, &ph, r, up, ph.be == &platform_kms_backend, &err))
+        goto fail_upscale;
     status = 0;
 
+fail_upscale:
+    if (up)
+        upscale_destroy(up);
 fail_renderer:
     renderer_destroy(r);
 fail_gpu:

@@ -92,6 +92,9 @@ BOARDS = [
          note="4 vec4 shader cores (16 ALU lanes)", targets={}),
 ]
 SIZES = ("1280x720", "1920x1080")
+# render scales estimated (swell --scale, src/upscale.h): the frame drawn at scale x the output
+# and stretched over it; the devices' runs build the stretch at the last one
+SCALES = (1.0, 0.5)
 VIEWS = [("default", []), ("surface", ["--path", "surface"]), ("1km", ["--path", "1km"]),
          ("10km", ["--path", "10km"])]
 
@@ -137,6 +140,8 @@ def program_name(vs, defines):
             "high" if "QUALITY_HIGH" in d else "low",
             " cpu-vertex" if "CPU_VERTEX_TERMS" in d else "",
             " no-detile" if "SWELL_NO_DETILE" in d else "")
+    if vs.startswith("upscale"):
+        return "upscale"
     return "sky sun" if "SUN_DISC" in d else "sky"
 
 
@@ -281,9 +286,11 @@ def drawn_as(name, use, have, tags):
     return None
 
 
-def estimate(board, run, records, shares, verts, size):
+def estimate(board, run, records, shares, verts, size, scale):
     """Frames per second by the cost model (BOARDS), or None where a program drawn has no cost
-    statistic; with the ms per frame of fragment and vertex work."""
+    statistic; with the ms per frame of fragment and vertex work. At a render scale below 1
+    the shares are the scaled frame's and the stretch (one 'upscale' pass over every output
+    pixel) is added."""
     cost = {}
     for r in records:
         if r["model"] == board["model"] and r["tier"] == run["tier"] and \
@@ -292,7 +299,7 @@ def estimate(board, run, records, shares, verts, size):
             cost[(r["program"], r["stage"])] = r["cost"]
     have = {p for (p, st) in cost if p.startswith("ocean")}
     w, h = (int(x) for x in size.split("x"))
-    px, frag, vs = w * h, 0.0, 0.0
+    px, frag, vs = round(w * scale) * round(h * scale), 0.0, 0.0
     worst = 0
     for name, share in shares.items():
         if name == "mixed":
@@ -306,6 +313,11 @@ def estimate(board, run, records, shares, verts, size):
             vs = max(vs, cost.get((prog, "vertex")) or 0)
             worst = max(worst, c)
     frag += shares.get("mixed", 0.0) * px * worst   # drawn twice: at the costliest
+    if scale < 1:
+        c = cost.get(("upscale", "fragment"))
+        if c is None:
+            return None
+        frag += w * h * c
     t_frag = frag / (board["clock"] * board["lanes"])
     t_vert = verts * vs / (board["clock"] * board["vs_lanes"])
     return dict(fps=1.0 / (t_frag + t_vert), ms_fragment=1e3 * t_frag, ms_vertex=1e3 * t_vert)
@@ -347,7 +359,7 @@ def run(args):
                             "MESA_SHADER_CACHE_DISABLE": "true"})
                 cmd = [os.path.join(build, "swell"), "--platform", "surfaceless", "--tables",
                        tables, "--size", "640x360", "--frames", "1", "--quality", quality,
-                       "--out", os.path.join(out_dir, "frame.png")]
+                       "--out", os.path.join(out_dir, "frame.png"), "--scale", str(SCALES[-1])]
                 if tier != "auto":
                     cmd += ["--tier", tier]
                 try:
@@ -392,16 +404,18 @@ def run(args):
         for rn in runs:
             if rn["model"] != board["model"] or rn["exit"] != 0 or rn["drew"] != rn["quality"]:
                 continue
-            for size in SIZES:
+            for size, scale in ((z, c) for z in SIZES for c in SCALES):
+                w, h = (int(x) for x in size.split("x"))
+                drawn = "%dx%d" % (round(w * scale), round(h * scale))
                 for view in VIEWS:
                     shares, verts = measure_shares(root, build, tables, rn["tier"],
-                                                   rn["quality"], rn["detile"], size, view,
+                                                   rn["quality"], rn["detile"], drawn, view,
                                                    cache)
-                    e = estimate(board, rn, all_records, shares, verts, size)
+                    e = estimate(board, rn, all_records, shares, verts, size, scale)
                     estimates.append(dict(board=board["board"], model=board["model"],
                                           tier_asked=rn["tier_asked"], tier=rn["tier"],
-                                          quality=rn["quality"], size=size, view=view[0],
-                                          shares=shares, vertices=verts,
+                                          quality=rn["quality"], size=size, scale=scale,
+                                          view=view[0], shares=shares, vertices=verts,
                                           target_fps=board["targets"].get((rn["quality"], size)),
                                           **(e or dict(fps=None))))
         print("devices: estimated %s" % board["board"], file=sys.stderr)
@@ -502,12 +516,20 @@ def cost_doc(estimates):
             lines.append("- %s: %s." % (b["board"], b["note"]))
     lines += ["", "Views: swell's default camera (10 m up, pitch -10°), and --path surface, 1km "
               "and 10km at t = 0. fps: the default view's, the slowest view's in brackets; "
-              "target: issue 15 item 4.", "",
-              "| board | tier asked | tier | quality | size | fps default (slowest) | ms fragment "
-              "/ vertex (default) | target | |", "|---|---|---|---|---|---|---|---|---|"]
+              "target: issue 15 item 4, set for frames shaded at the output's size. Size: the "
+              "output's; at a render scale below 1 (swell --scale, src/upscale.h) the frame is "
+              "shaded at the size in brackets and stretched over the output, the stretch's "
+              "cost (the 'upscale' program over every output pixel) included: the trade "
+              "offered where a target is missed, a blurrier picture for fewer pixels shaded.",
+              "", "| board | tier asked | tier | quality | size | fps default (slowest) | ms "
+              "fragment / vertex (default) | target | |", "|---|---|---|---|---|---|---|---|---|"]
     groups = {}
     for e in estimates:
-        groups.setdefault((e["board"], e["tier_asked"], e["tier"], e["quality"], e["size"]),
+        size = e["size"]
+        if e.get("scale", 1.0) < 1:
+            w, h = (int(x) for x in size.split("x"))
+            size += " (%dx%d)" % (round(w * e["scale"]), round(h * e["scale"]))
+        groups.setdefault((e["board"], e["tier_asked"], e["tier"], e["quality"], size),
                           []).append(e)
     for key, es in groups.items():
         d = next((e for e in es if e["view"] == "default"), es[0])

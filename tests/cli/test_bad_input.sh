@@ -138,6 +138,11 @@ values swell --geometry mesh "" GRID
 values swell --tier gles4 "" GLES3 gles2
 values swell --lod run "" PIXEL per-pixel
 values swell --detile yes "" ON 1 AUTO
+values swell --scale 0 -0.5 0.24 1.01 2 nan inf 1e300 50% 0.5x abc ""
+out=$("$S" --platform surfaceless --size 64x64 --frames 1 --out "$T/never.png" --scale 0.5 \
+      --debug variants 2>&1); rc=$?
+check "swell: --scale with --debug variants is a usage error ($out)" \
+    sh -c "[ $rc -eq 2 ] && ! [ -e '$T/never.png' ] && printf '%s' '$out' | grep -q -- --scale"
 values swell --mode 0x0 15x480 640x480@0 640x480@1001 640x480@nan 640x480@ abc ""
 values swell --kms-api modern "" ATOMIC
 needs_value swell --device

@@ -67,6 +67,13 @@ if [ -x "$SWELL" ]; then
             "$R/swell-sl-$n.png" --max-diff 255 --max-percent "$PCT" --max-mean "$MEAN"
         i=$((i + 1))
     done
+    # render scale: the frame drawn at half size into a texture, stretched over the scanout
+    step swell-kms-scaled "$PROBE" watch -- "$SWELL" --platform kms --mode 640x480 --fps 30 \
+        --frames 1 --tier gles2-min --scale 0.5 --out "$R/swell-kms-scaled.png"
+    step swell-surfaceless-scaled "$SWELL" --platform surfaceless --size 640x480 --fps 30 \
+        --frames 1 --tier gles2-min --scale 0.5 --out "$R/swell-sl-scaled.png"
+    step swell-scaled-kms-vs-surfaceless "$PROBE" compare "$R/swell-kms-scaled.png" \
+        "$R/swell-sl-scaled.png" --max-diff 255 --max-percent "$PCT" --max-mean "$MEAN"
     # SIGTERM once the second frame (a real page flip) was scanned out and saved.
     step swell-sigterm "$PROBE" watch --term-when-exists "$R/swell-sig-0001.png" -- "$SWELL" \
         --platform kms --mode 640x480 --frames 0 --fps 30 --tier gles2-min \
