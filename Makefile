@@ -109,10 +109,15 @@ test-frame: $(FRAME_BIN) $(if $(wildcard src/swell.c),$(SWELL),)
 # etnaviv with their noop drm-shims, built once from Debian's mesa source (tools/mesa-shim.sh;
 # cached outside the clone), then every GPU model, tier and quality (tools/devices.py):
 # build/devices/results.json and docs/devices.md. Fails while any program is refused, spills or
-# passes 90 % of a hard limit (issue 15). Not in `make test` yet: today's shaders fail it.
+# passes 90 % of a hard limit (issue 15). Not in `make test`: it builds Mesa first (about 26
+# CPU-minutes, once per machine), and today's shaders fail it. With
+# DEVICES_KNOWN=tests/devices/known-problems.txt (what CI runs, .ci/run) the problems listed
+# there are expected: it fails on any other, and on a listed one that is gone.
+DEVICES_KNOWN ?=
 test-devices: $(SWELL) $(SWELL_BAKE)
 	tools/mesa-shim.sh > $(BUILD)/mesa-prefix
-	/usr/bin/python3 tools/devices.py --build $(BUILD) --prefix "$$(cat $(BUILD)/mesa-prefix)"
+	/usr/bin/python3 tools/devices.py --build $(BUILD) --prefix "$$(cat $(BUILD)/mesa-prefix)" \
+	    $(if $(DEVICES_KNOWN),--known $(DEVICES_KNOWN))
 
 clean:
 	rm -rf build
