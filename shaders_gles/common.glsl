@@ -86,14 +86,21 @@ vec2 sky_map_uv(vec3 r)
     return vec2(0.5) + 0.5 * r.xy / (1.0 + r.z);
 }
 
-// The sky's radiance at the horizon in a direction whose angle to the sun has cosine cg
-// (sky.h sky_haze: the Rayleigh and Mie phase functions times its horizon terms ray, mie;
-// Henyey-Greenstein g): what a long path through the air scatters in (ocean.vert, ocean.frag).
-vec3 horizon_sky(float cg, float g, vec3 ray, vec3 mie)
+// The Rayleigh and Mie phase functions at the cosine cg of the angle to the sun (Mie by
+// Henyey-Greenstein g): the weights of sky.h sky_haze's horizon terms.
+vec2 haze_phases(float cg, float g)
 {
     float hg = 1.0 + g * g - 2.0 * g * cg;
-    return ray * (3.0 / (16.0 * PI) * (1.0 + cg * cg)) +
-           mie * ((1.0 - g * g) / (4.0 * PI * hg * sqrt(hg)));
+    return vec2(3.0 / (16.0 * PI) * (1.0 + cg * cg), (1.0 - g * g) / (4.0 * PI * hg * sqrt(hg)));
+}
+
+// The sky's radiance at the horizon in a direction whose angle to the sun has cosine cg
+// (sky.h sky_haze: the phase functions times its horizon terms ray, mie): what a long path
+// through the air scatters in (vterms.glsl).
+vec3 horizon_sky(float cg, float g, vec3 ray, vec3 mie)
+{
+    vec2 ph = haze_phases(cg, g);
+    return ray * ph.x + mie * ph.y;
 }
 
 // erf by Abramowitz & Stegun 7.1.25: |error| <= 2.5e-5 in exact arithmetic, well below what

@@ -60,12 +60,11 @@ uniform vec4 wc_scale[4];
 uniform vec4 wc_bias[4];
 uniform vec3 haze_ray;              // sky.h sky_haze's horizon terms (x exposure); low quality
 uniform vec3 haze_mie;              // takes them in ocean.vert instead
-uniform vec3 haze_sun;              // the sun's direction xy; Henyey-Greenstein g
 uniform vec3 haze_tau_ratio;        // each channel's optical depth over green's
-varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here
-varying vec4 v_extra;               // with no whitecap fetched the coverage (ocean.vert), else
-                                    // 0; sky LOD offset; the haze's transmittance (ocean.vert
-                                    // haze_t); the footprint (ocean.vert lod_foot)
+varying vec4 v_base;                // slope variance xy and k mean, k variance not fetched here;
+                                    // with no whitecap fetched, z: the coverage (ocean.vert)
+varying vec4 v_extra;               // the haze's Mie and Rayleigh phase weights (vterms.glsl),
+                                    // its green transmittance; the footprint (lod_foot)
 #define V_FOOT v_extra.w
 #else
 varying vec4 v_sun;                 // zeta_h - s0, the Ross factor over 2 pi sigma_x sigma_y,
@@ -310,7 +309,11 @@ void main()
     // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
     // log2 of it is log2(sigma) + the vertex's log2(2 size du/dzeta).
 #ifndef SWELL_RUN_LOD
-    float foot = 0.5 * log2(max(var.x, var.y)) + v_extra.y;
+    // log2(2 sigma size du/dzeta) with du/dzeta = 1 / (1 + r_z) of the reflected ray r at the
+    // vertex's mean slope, read off its stereographic uv (common.glsl sky_map_uv): with d = uv
+    // - 1/2, 4 |d|^2 = (1 - r_z) / (1 + r_z), so 2 / (1 + r_z) = 1 + 4 |d|^2
+    vec2 dq = v_lin.zw - vec2(0.5);
+    float foot = log2(sqrt(max(var.x, var.y)) * (1.0 + 4.0 * dot(dq, dq)) / sky_map_inv_size);
 #endif
 #if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint as the renderer takes
@@ -369,15 +372,12 @@ void main()
 #if FS_WHITECAPS > 0
     float cover = whitecap_cover(whitecap_epsilon, g_mu, g_kvar);
 #else
-    float cover = v_extra.x;   // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
+    float cover = v_base.z;    // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif
     // Foam: Lambertian, reflectance 0.4 (Dupuy §2), lit by sun and sky.
-    // Aerial perspective (ocean.vert haze_t): the path scatters in (1 - T) times the horizon sky
-    // of its azimuth (sky.h sky_haze), the reflected ray's at the vertex's mean slope (v_lin.zw,
-    // the sky map's stereographic uv: its xy is the view's)
-    vec2 az = v_lin.zw - vec2(0.5);
-    az *= inversesqrt(max(dot(az, az), 1e-8));
-    vec3 haze = horizon_sky(dot(az, haze_sun.xy), haze_sun.z, haze_ray, haze_mie);
+    // Aerial perspective (vterms.glsl): the path scatters in (1 - T) times the horizon sky of
+    // its azimuth (sky.h sky_haze), its phase weights from the vertex
+    vec3 haze = haze_ray * v_extra.y + haze_mie * v_extra.x;
     // each channel's transmittance from green's: e^{-tau_c m} = T_g^(tau_c / tau_g)
     vec3 t = exp2(haze_tau_ratio * log2(max(v_extra.z, 1e-4)));
     gl_FragColor = vec4(tone_map(mix(haze, mix(clear_sea, foam_radiance, cover), t)), 1.0);

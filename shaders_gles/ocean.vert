@@ -127,9 +127,8 @@ attribute vec4 a_lin;       // the lookups at s0 and their derivatives in s (v_l
 attribute vec4 a_lin_dx;
 attribute vec4 a_lin_dy;
 attribute vec4 a_sun;       // zeta_h - s0, the Ross factor, eq. 25's x weight
-#ifndef QUALITY_HIGH
-attribute vec3 a_fog;       // in-scattered light of the path to the camera
-#endif
+attribute vec3 a_fog;       // low quality: in-scattered light of the path to the camera;
+                            // high: the haze's phase weights (vterms.glsl)
 #else
 // gles2-min: the CPU displaced the vertex (grid.c); the terms of the vertex alone are
 // evaluated here.
@@ -242,11 +241,7 @@ void main()
     lin_dy = a_lin_dy;
     sun = a_sun;
     geo = vec3(a_pos.w, a_geo.zw);
-#ifdef QUALITY_HIGH
-    fog = vec3(0.0);
-#else
     fog = a_fog;
-#endif
 #else
     pos = a_pos;
     rest = a_rest;
@@ -262,13 +257,15 @@ void main()
 #ifdef QUALITY_HIGH
     v_sun = sun;
     v_base = vec4(var_base, k_base);
-    v_extra = vec4(0.0, geo.y, geo.z, geo.x);
 #if FS_WHITECAPS == 0
     // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
-    // moments alone, so it is evaluated here and v_extra.x carries it (exact where no pattern
+    // moments alone, so it is evaluated here and v_base.z carries it (exact where no pattern
     // is resolved per vertex, as the moments are then the same at every vertex).
-    v_extra.x = whitecap_cover(whitecap_epsilon_v, v_base.z, v_base.w);
+    v_base.zw = vec2(whitecap_cover(whitecap_epsilon_v, k_base.x, k_base.y), 0.0);
 #endif
+    // the haze's Mie and Rayleigh weights, its green transmittance, the footprint (the sky
+    // map's eq. 27 offset geo.y is derived per pixel from v_lin.zw, ocean.frag)
+    v_extra = vec4(fog.y, fog.x, geo.z, geo.x);
 #else
     // Low quality: the pixel's slope variance per vertex (fetched_var), so the vertex carries
     // the Gaussian's inverse variances and normalisation with the Ross factor (ocean.frag)

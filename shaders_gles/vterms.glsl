@@ -1,7 +1,8 @@
 // vterms.glsl - the terms of a sea vertex alone, for ocean.vert; src/vshade.c evaluates the same
 // on the CPU where a driver refuses the vertex shaders that do (CPU_VERTEX_TERMS; the uniforms
 // here are the fields of its struct vshade_frame), and test_glsl's test_vshade compares the two
-// on the GPU through tests/glsl/fn_vterms.vert. Needs common.glsl; QUALITY_HIGH drops the fog.
+// on the GPU through tests/glsl/fn_vterms.vert. Needs common.glsl; QUALITY_HIGH takes the
+// haze's phase weights instead of its fog.
 // the terms of the vertex alone (vshade.h's frame: on gles2-min the CPU evaluates them)
 uniform vec2 fresnel_uv_scale;          // the Fresnel texels' share of the atlas (renderer.c)
 uniform vec3 lin_s0;        // xy: mean slope of every fragment pattern slot; z: step h
@@ -81,10 +82,10 @@ void vertex_terms(vec3 p, vec2 rest, vec2 s_cpu, vec2 svar, out vec4 lin, out ve
     // aerial perspective from the sky model (sky.h sky_haze): the path of length |p| to the
     // camera has air mass |p| (1 - e^{-h/H}) / h through the exponential atmosphere,
     // transmittance e^{-tau m} per channel, and scatters in (1 - T) times the horizon sky of
-    // its azimuth (high quality: ocean.frag evaluates it per pixel from green's T; low quality
-    // gives the sea green's T in every channel, ocean.vert: with green's for the in-scattered
-    // light too the sea 10 km out was 7 % off high's in the 8-row means, test_quality_match,
-    // with blue's 7 % at 1 km)
+    // its azimuth, the view's (high quality: the phase weights here, each channel's T from
+    // green's per pixel in ocean.frag; low quality gives the sea green's T in every channel,
+    // ocean.vert: with green's for the in-scattered light too the sea 10 km out was 7 % off
+    // high's in the 8-row means, test_quality_match, with blue's 7 % at 1 km)
     vec3 t = exp(-haze_tau * (length(p) * haze_frame.x));
     // log2 of the pixel footprint along the view at rest point p on the sea plane, m: (d^2 +
     // a^2) / a times the pixel's angle at horizontal distance d from a camera at altitude a,
@@ -92,10 +93,10 @@ void vertex_terms(vec3 p, vec2 rest, vec2 s_cpu, vec2 svar, out vec4 lin, out ve
     // pattern by it where the renderer stops fetching it, and matches its run's level to it.
     geo = vec3(log2(dot(rest, rest) + lod_frame.x) + lod_frame.y,
                log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))), t.g);
-#ifdef QUALITY_HIGH
-    fog = vec3(0.0);
-#else
     float cg = dot(p.xy / max(length(p.xy), 1e-6), sun_dir_world.xy);
+#ifdef QUALITY_HIGH
+    fog = vec3(haze_phases(cg, haze_frame.y), 0.0);
+#else
     fog = horizon_sky(cg, haze_frame.y, haze_ray, haze_mie) * (1.0 - t);
 #endif
 }

@@ -41,7 +41,7 @@ enum ocean_uniform {
     OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
-    OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME, OU_HAZE_SUN,
+    OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME,
     OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
     OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
     OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_COUNT
@@ -54,7 +54,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
-    "haze_sun", "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
+    "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
     "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "var_knot_v",
     "var_knot_frame_v", "sky_run_lod", "sky_run_blk"
 };
@@ -1659,7 +1659,6 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         glUniform3fv(u[OU_HAZE_RAY], 1, r->vf.haze_ray);
         glUniform3fv(u[OU_HAZE_MIE], 1, r->vf.haze_mie);
         glUniform2fv(u[OU_HAZE_FRAME], 1, r->vf.haze_frame);
-        glUniform3f(u[OU_HAZE_SUN], r->sky.sun_dir[0], r->sky.sun_dir[1], hz->mie_g);
         glUniform3f(u[OU_HAZE_TAU_RATIO], hz->tau_ext[0] / hz->tau_ext[1], 1.0f,
                     hz->tau_ext[2] / hz->tau_ext[1]);
     }
@@ -2187,7 +2186,7 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
             glVertexAttribPointer(A_GRID, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
         } else if (r->cpu_vterms) {
             glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->shaded);
-            /* vshade.h: eight vec4 in order (high quality's programs have no a_fog) */
+            /* vshade.h: eight vec4 in order */
             for (int a = 0; a < A_COUNT; a++) {
                 glEnableVertexAttribArray((GLuint)a);
                 glVertexAttribPointer((GLuint)a, 4, GL_FLOAT, GL_FALSE,

@@ -91,14 +91,12 @@ static float ross_lambda1(float cos_t, float var)
     return (1.0f - 1.259f * a + 0.396f * a * a) / (3.535f * a + 2.181f * a * a);
 }
 
-/* common.glsl horizon_sky: the Rayleigh and Mie phase functions times the horizon terms. */
-static void horizon_sky(float cg, float g, const float *ray, const float *mie, float *out)
+/* common.glsl haze_phases: the Rayleigh and Mie phase functions at cosine cg, Mie g. */
+static void haze_phases(float cg, float g, float ph[2])
 {
     float hg = 1.0f + g * g - 2.0f * g * cg;
-    float pr = 3.0f / (16.0f * PI_F) * (1.0f + cg * cg);
-    float pm = (1.0f - g * g) / (4.0f * PI_F * hg * sqrtf(hg));
-    for (int c = 0; c < 3; c++)
-        out[c] = ray[c] * pr + mie[c] * pm;
+    ph[0] = 3.0f / (16.0f * PI_F) * (1.0f + cg * cg);
+    ph[1] = (1.0f - g * g) / (4.0f * PI_F * hg * sqrtf(hg));
 }
 
 /* One vertex: ocean.vert main's terms of the vertex alone. */
@@ -161,19 +159,20 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
     o[VSHADE_GEO + 2] = log2f(2.0f * f->sky_map_size / (1.0f + maxf(rz, 0.0f)));
     o[VSHADE_GEO + 3] = t[1];
     o[VSHADE_FOG + 3] = 0.0f;
-    if (!f->fog) {
-        o[VSHADE_FOG + 0] = o[VSHADE_FOG + 1] = o[VSHADE_FOG + 2] = 0.0f;
+    /* aerial perspective (vterms.glsl): (1 - T) times the horizon sky of the view's azimuth */
+    float pxy = maxf(sqrtf(p[0] * p[0] + p[1] * p[1]), 1e-6f);
+    float cg = (p[0] * f->sun_dir[0] + p[1] * f->sun_dir[1]) / pxy, ph[2];
+    haze_phases(cg, f->haze_frame[1], ph);
+    if (!f->fog) {   /* high quality: the phase weights (ocean.frag applies each channel's T) */
+        o[VSHADE_FOG + 0] = ph[0];
+        o[VSHADE_FOG + 1] = ph[1];
+        o[VSHADE_FOG + 2] = 0.0f;
         return;
     }
-    /* aerial perspective (ocean.vert haze): (1 - T) times the horizon sky of its azimuth */
     t[0] = expf(-f->haze_tau[0] * m);
     t[2] = expf(-f->haze_tau[2] * m);
-    float pxy = maxf(sqrtf(p[0] * p[0] + p[1] * p[1]), 1e-6f);
-    float cg = (p[0] * f->sun_dir[0] + p[1] * f->sun_dir[1]) / pxy;
-    float sky_h[3];
-    horizon_sky(cg, f->haze_frame[1], f->haze_ray, f->haze_mie, sky_h);
     for (int c = 0; c < 3; c++)
-        o[VSHADE_FOG + c] = sky_h[c] * (1.0f - t[c]);
+        o[VSHADE_FOG + c] = (f->haze_ray[c] * ph[0] + f->haze_mie[c] * ph[1]) * (1.0f - t[c]);
 }
 
 void vshade_fill(const struct vshade_frame *f, const float *grid_verts, int n, float *out)

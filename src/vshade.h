@@ -21,14 +21,15 @@
 #define SWELL_VSHADE_H
 
 /* Vertex layout of the buffer the gles2-min programs read, floats (eight vec4 attributes at
- * most, GLES 2's minimum; high quality reads the first seven):
+ * most, GLES 2's minimum):
  *   pos   displaced position xyz, m; w: log2 of the pixel footprint at the rest point, m
  *   rest  rest position on the sea plane xy, m; the CPU patterns' resolved slope variance xy
  *   geo   the CPU patterns' foam memory mean and variance (Dupuy eq. 7-8); the sky map's eq. 27
  *         LOD offset log2(2 size / (1 + r_z)); the haze's green transmittance
  *   lin   Fresnel-texture uv and sky-map uv at s0; lin_dx, lin_dy: their derivatives in s
  *   sun   zeta_h - s0 (xy), the Ross factor, eq. 25's x weight
- *   fog   low quality: the in-scattered light of the path to the camera, rgb */
+ *   fog   low quality: the in-scattered light of the path to the camera, rgb; high: the
+ *         haze's Rayleigh and Mie phase weights at the view's azimuth, 0 */
 enum vshade_attr {
     VSHADE_POS = 0, VSHADE_REST = 4, VSHADE_GEO = 8, VSHADE_LIN = 12, VSHADE_LIN_DX = 16,
     VSHADE_LIN_DY = 20, VSHADE_SUN = 24, VSHADE_FOG = 28, VSHADE_FLOATS = 32
@@ -47,7 +48,7 @@ struct vshade_frame {
     float haze_frame[2];        /* air mass per metre of path; Mie g */
     float haze_ray[3];          /* horizon Rayleigh and Mie radiances (x exposure) */
     float haze_mie[3];
-    int fog;                    /* 1: fill fog (low quality) */
+    int fog;                    /* 1: fill fog (low quality), 0: the phase weights (high) */
 };
 
 /* The input vertex layout is grid.h's (GRID_FLOATS per vertex); out holds n * VSHADE_FLOATS. */
