@@ -405,3 +405,34 @@ int gpu_check(const char *where, struct swell_err *err)
                       gl_error_name(first), (unsigned)first,
                       first == GL_OUT_OF_MEMORY ? "; lower --budget or the table sizes" : "");
 }
+
+void gpu_probe_target_begin(struct gpu_probe_target *t, int size)
+{
+    uint8_t px[4] = { 0, 0, 0, 0 };
+    memset(t, 0, sizeof *t);
+    t->size = size;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &t->prev);
+    glGenTextures(1, &t->tex);
+    glBindTexture(GL_TEXTURE_2D, t->tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, size, size, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glGenFramebuffers(1, &t->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
+    t->complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    if (!t->complete)
+        return;
+    glViewport(0, 0, size, size);
+    glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    t->executes = px[0] == 255 && px[1] == 0 && px[2] == 255 && px[3] == 255;
+}
+
+void gpu_probe_target_end(struct gpu_probe_target *t)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)t->prev);
+    glDeleteFramebuffers(1, &t->fbo);
+    glDeleteTextures(1, &t->tex);
+    t->fbo = t->tex = 0;
+}

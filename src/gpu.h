@@ -84,4 +84,17 @@ void gpu_buffer_destroy(struct gpu *g, GLuint *buf);
 /* glGetError() drained into err with the call site named; 0 if none. */
 int gpu_check(const char *where, struct swell_err *err);
 
+/* A start-up probe's small target (renderer.c probe_programs, upscale.c): a size x size RGBA8
+ * texture bound as the framebuffer (the one bound before kept in prev), cleared to magenta.
+ * complete: the framebuffer is; executes: the clear read back, i.e. this device runs draws
+ * (Mesa's noop drm-shims run none, so a probe there can only read the driver's words). */
+struct gpu_probe_target {
+    GLuint fbo, tex;
+    GLint prev;
+    int size, complete, executes;
+};
+void gpu_probe_target_begin(struct gpu_probe_target *t, int size);
+/* The framebuffer bound before begin bound again; the target deleted. */
+void gpu_probe_target_end(struct gpu_probe_target *t);
+
 #endif

@@ -1113,33 +1113,17 @@ static int running_variant(const struct renderer *r, int ka, int kb, int kstep, 
 
 static int probe_programs(struct renderer *r, struct swell_err *err)
 {
-    GLint prev_fbo = 0;
-    GLuint fbo = 0, tex = 0;
     static uint8_t px[4 * PROBE_SIZE * PROBE_SIZE];
-    const char *labels = getenv("SWELL_SHADER_LABELS");
-    int label = labels && labels[0] == '1';
+    int label = shader_labels();
     for (int v = 0; v < OCEAN_VARIANTS; v++) {
         r->variant_ok[v] = r->ocean[v].program != 0;
         r->variant_use[v] = v;
     }
     r->force_variant = -1;
-    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev_fbo);
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, PROBE_SIZE, PROBE_SIZE, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-    int complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    if (complete) {
-        glViewport(0, 0, PROBE_SIZE, PROBE_SIZE);
-        glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
-        r->probe_executes = px[0] == 255 && px[1] == 0 && px[2] == 255 && px[3] == 255;
-    }
+    struct gpu_probe_target pt;
+    gpu_probe_target_begin(&pt, PROBE_SIZE);
+    int complete = pt.complete;
+    r->probe_executes = pt.executes;
     struct camera cam;
     camera_defaults(&cam);
     cam.pos[2] = 20.0;
@@ -1190,9 +1174,7 @@ static int probe_programs(struct renderer *r, struct swell_err *err)
     r->probing = 0;
     r->force_variant = -1;
     r->sky_view_alt = NAN;   /* the first frame builds the background for its own camera */
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev_fbo);
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(1, &tex);
+    gpu_probe_target_end(&pt);
     /* each variant's stand-in: the most patterns, then whitecaps, among those that run */
     char list[256] = "";
     size_t ln = 0;

@@ -484,8 +484,7 @@ int shader_program_build(const struct shader_desc *d, struct shader_program *out
     /* SWELL_SHADER_LABELS: each build between two labelled lines on stderr, so what a driver
      * prints while compiling and linking it (its statistics, tools/devices.py) can be told
      * apart by program */
-    const char *labels = getenv("SWELL_SHADER_LABELS");
-    if (labels && labels[0] == '1')
+    if (shader_labels())
         fprintf(stderr, "swell-program: begin %s + %s [%s] tier %s\n", d->vs_file, d->fs_file,
                 d->defines ? d->defines : "", gpu_tier_name(d->caps->tier));
     int rc = compile_stage(d, GL_VERTEX_SHADER, &vs, err);
@@ -527,7 +526,7 @@ int shader_program_build(const struct shader_desc *d, struct shader_program *out
         goto fail;
     }
     out->program = prog;
-    if (labels && labels[0] == '1')
+    if (shader_labels())
         fprintf(stderr, "swell-program: end\n");
     return SWELL_OK;
 
@@ -547,4 +546,10 @@ void shader_program_destroy(struct shader_program *p)
         return;
     glDeleteProgram(p->program);
     p->program = 0;
+}
+
+int shader_labels(void)
+{
+    const char *labels = getenv("SWELL_SHADER_LABELS");
+    return labels && labels[0] == '1';
 }

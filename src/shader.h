@@ -62,6 +62,11 @@ int  shader_program_build(const struct shader_desc *d, struct shader_program *ou
                           struct swell_err *err);
 void shader_program_destroy(struct shader_program *p);
 
+/* 1 when SWELL_SHADER_LABELS=1: builds and probe draws are labelled on stderr
+ * ("swell-program: begin / probe / end"), so tools/devices.py can tell which program a
+ * driver's statistics belong to. */
+int  shader_labels(void);
+
 /* The assembled source of one stage (header + inlined includes with #line directives), as the
  * driver sees it; malloc'd, caller frees. stage: GL_VERTEX_SHADER or GL_FRAGMENT_SHADER. */
 int  shader_assemble(const struct shader_desc *d, GLenum stage, char **source,

@@ -43,33 +43,18 @@ static void draw_stretch(struct upscale *u, int w, int h)
  * SWELL_SHADER_LABELS=1, as the renderer's probe is. */
 static int probe(struct upscale *u, struct swell_err *err)
 {
-    const char *labels = getenv("SWELL_SHADER_LABELS");
-    int label = labels && labels[0] == '1';
-    GLint prev = 0;
-    GLuint fbo = 0, tex = 0;
+    int label = shader_labels(), ok = 1;
     uint8_t px[4] = { 0, 0, 0, 0 };
+    GLint prev = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev);
     glBindFramebuffer(GL_FRAMEBUFFER, u->fbo);
     glViewport(0, 0, u->w, u->h);
     glClearColor(0.0f, 1.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, PROBE_SIZE, PROBE_SIZE, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-    int complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    int executes = 0, ok = 1;
-    if (complete) {
-        glViewport(0, 0, PROBE_SIZE, PROBE_SIZE);
-        glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        glReadPixels(0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
-        executes = px[0] == 255 && px[1] == 0 && px[2] == 255;
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev);
+    struct gpu_probe_target pt;
+    gpu_probe_target_begin(&pt, PROBE_SIZE);
+    if (pt.complete) {
         char text[2048];
         struct capture cap;
         if (label)
@@ -79,7 +64,7 @@ static int probe(struct upscale *u, struct swell_err *err)
         glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
         capture_end(&cap, text, sizeof text);
         ok = !capture_refused(text);
-        if (ok && executes) {
+        if (ok && pt.executes) {
             glReadPixels(PROBE_SIZE / 2, PROBE_SIZE / 2, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
             ok = px[0] < 8 && px[1] > 247 && px[2] < 8;
         }
@@ -88,9 +73,7 @@ static int probe(struct upscale *u, struct swell_err *err)
     }
     while (glGetError() != GL_NO_ERROR)
         ;
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev);
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(1, &tex);
+    gpu_probe_target_end(&pt);
     if (!ok)
         return swell_fail(err, SWELL_E_SHADER, "upscale: the driver does not run the stretch of "
                           "--scale (shaders_gles/upscale.*); use --scale 1");
