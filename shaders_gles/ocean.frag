@@ -30,7 +30,6 @@ uniform vec4 sky_run_lod;           // the run's blend of two sky levels: w = x 
                                     // half texel of each level in its uv (renderer.c set_run_lods)
 uniform vec4 sky_run_blk[2];        // the two levels' blocks in the atlas: scale xy, offset zw
 #endif
-uniform vec2 ds_offset;             // added to the fetched slopes to give ds = s - s0
 uniform vec4 slope_scale[4];        // RGBA8 dequantisation per fragment pattern slot
 uniform vec4 slope_bias[4];
 uniform vec3 detile_shift[4];       // per slot: the camera's lattice cell modulo DETILE_N plus
@@ -45,11 +44,12 @@ uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 #ifdef QUALITY_HIGH
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
-uniform vec2 slope_var[4];          // per slot: the slope variance over its patch, xy
+uniform vec2 slope_var[4];          // per slot: the slope variance over its patch less the
+                                    // level's mean within-texel variance, T - W, xy
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
-uniform vec4 wc_mean[4];            // per slot: the foam memory's mean over its patch, its
-                                    // within-texel variance at the level, over the patch; the
-                                    // share of the fetched one to trust (add_whitecap)
+uniform vec4 wc_mean[4];            // per slot: the foam memory's mean over its patch; of its
+                                    // variance: the share of the fetched within-texel one to
+                                    // trust B, -B W, T - W (add_whitecap)
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
@@ -172,6 +172,9 @@ void detile(vec2 uv, vec3 sh)
 // T the patch's variance (the top level's, = W + the means' variance), the pixel's is
 // g v + (1 - g) W + (1 - g^2) (T - W), whose mean over the patch is T at every g. So the mean
 // radiance stays and at g = 0 the slot is its patch's constants, as where it is not fetched.
+// (The patches' means and variances T of the slots fetched are summed into the vertex's
+// constants, v_base, by the renderer, set_ocean_uniforms: a slot adds only what depends on
+// its taps, T + h (v - W - h (T - W)) written as its last part, with h = min(g, 1) below.)
 // Where the contrast factor takes g above 1 the variance takes min(g, 1): the fetched v as it
 // is, never less (the bookkeeping's (1 - g^2) would take the patch's variance back, to below
 // zero on tables of a few waves, where the level contrasts are extreme).
@@ -182,19 +185,20 @@ float slot_weight(vec4 l, float cmax)
 
 #ifdef QUALITY_HIGH
 // The blend of three taps of a moment table (detile.h): means by w_j about the patch's mean m
-// (m + sum_j w_j (s_j - m)), variances by w_j^2; both weighted by g (slot_weight) about the
-// level's mean within-texel variance m.zw, with t the patch's variance.
-void add_slope(vec4 b, vec4 sc, vec4 m, vec2 t, float g, vec4 a0, vec4 a1, vec4 a2)
+// (m + sum_j w_j (s_j - m); m itself is in the vertex's constants, so ds gets the rest),
+// variances by w_j^2; both weighted by g (slot_weight) about the level's mean within-texel
+// variance W = m.zw, d = T - W.
+void add_slope(vec4 b, vec4 sc, vec4 m, vec2 d, float g, vec4 a0, vec4 a1, vec4 a2)
 {
     vec4 s0 = b + sc * a0, s1 = b + sc * a1, s2 = b + sc * a2;
-    g_ds += m.xy + g * (g_tw.x * s0.xy + g_tw.y * s1.xy + g_tw.z * s2.xy -
-                        dot(g_tw, vec3(1.0)) * m.xy);
+    g_ds += g * (g_tw.x * s0.xy + g_tw.y * s1.xy + g_tw.z * s2.xy -
+                 dot(g_tw, vec3(1.0)) * m.xy);
     vec3 w2 = g_tw * g_tw;
     vec2 v = w2.x * max(s0.zw - s0.xy * s0.xy, vec2(0.0)) +
              w2.y * max(s1.zw - s1.xy * s1.xy, vec2(0.0)) +
              w2.z * max(s2.zw - s2.xy * s2.xy, vec2(0.0));
     float h = min(g, 1.0);
-    g_var += h * v + (1.0 - h) * m.zw + (1.0 - h * h) * (t - m.zw);
+    g_var += h * (v - m.zw - h * d);
 }
 #define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))
 
@@ -211,22 +215,24 @@ void add_whitecap(vec4 b, vec4 sc, vec4 mu, float g, vec4 a0, vec4 a1, vec4 a2)
     // the foam up close. So it enters shrunk towards the level's mean, by mu.w = S^2 / (S^2 +
     // N^2) (renderer.c: S the level's mean, N the rounding's deviation): as fetched on the
     // coarse levels, the level's mean where it is noise.
+    // (mu.x and T are in the vertex's constants, as the slopes' are: mu = (mean, B, -B W,
+    // T - W), the slot adds h (B v - B W - h (T - W)))
     vec4 k0 = b + sc * a0, k1 = b + sc * a1, k2 = b + sc * a2;
-    g_mu += mu.x + g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
+    g_mu += g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
     float v = dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
                                         k2.y - k2.x * k2.x), vec3(0.0)));
     float h = min(g, 1.0);
-    g_kvar += mu.y + h * mu.w * (v - mu.y) + (1.0 - h * h) * (mu.z - mu.y);
+    g_kvar += h * (mu.y * v + mu.z - h * mu.w);
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
 #define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))
 #else
 // Low quality takes the variance per vertex (ocean.vert fetched_var): the mean slope only,
-// m + g (sum_j w_j s_j - (sum_j w_j) m).
+// g (sum_j w_j s_j - (sum_j w_j) m) (m is in s0, ocean.vert).
 #ifdef SWELL_NO_DETILE
-#define SLOPE(i, tex, uv) g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (slope_bias[i].xy - slope_mean[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy)
+#define SLOPE(i, tex, uv) g_ds += slot_weight(slot_lod[i], lod_cmax[i].x) * (slope_bias[i].xy - slope_mean[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy)
 #else
-#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += slope_mean[i].xy + slot_weight(slot_lod[i], lod_cmax[i].x) * (dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i].xy) + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy))
+#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += slot_weight(slot_lod[i], lod_cmax[i].x) * (dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i].xy) + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy))
 #endif
 #endif
 
@@ -246,7 +252,7 @@ vec3 sky_run(vec2 uv)
 #endif
 void main()
 {
-    g_ds = ds_offset;
+    g_ds = vec2(0.0);   // ds = s - s0: the patches' means are in s0 (ocean.vert)
     g_var = vec2(0.0);
 #ifdef QUALITY_HIGH
     g_mu = v_base.z;

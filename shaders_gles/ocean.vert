@@ -147,8 +147,9 @@ varying vec4 v_fog;         // in-scattered light, the sea's transmittance
 varying vec4 v_lin;         // Fresnel-texture uv, sky-map uv at s0
 varying vec4 v_lin_dx;      // their derivatives in s.x ...
 varying vec4 v_lin_dy;      // ... and s.y
-uniform vec4 const_slope;               // slots not fetched: -, -, slope variance xy
-uniform vec2 const_k;                   // ...their foam memory mean and variance
+uniform vec4 const_slope;               // slots not fetched: -, -, slope variance xy (high
+                                        // quality: the fetched slots' patch variances too)
+uniform vec2 const_k;                   // ...their foam memory mean and variance (likewise)
 uniform vec2 unresolved_var;            // slope variance below every table (Bruneton eq. 4)
 #if FS_WHITECAPS == 0 || !defined(QUALITY_HIGH)
 uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's, own name: a

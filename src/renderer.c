@@ -38,7 +38,7 @@ enum ocean_uniform {
     OU_WORLD_TO_CLIP, OU_UV_OFFSET, OU_INV_SIZE, OU_FRESNEL_TEX, OU_SKY_TEX, OU_SKY_SCALE,
     OU_SKY_SIZE, OU_SUN_DIR, OU_SUN_IRR, OU_SEA_RADIANCE, OU_FOAM_RADIANCE, OU_CONST_SLOPE,
     OU_CONST_K, OU_UNRESOLVED, OU_EPSILON, OU_SLOPE_SCALE, OU_SLOPE_BIAS, OU_WC_SCALE, OU_WC_BIAS,
-    OU_LIN_S0, OU_DS_OFFSET, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
+    OU_LIN_S0, OU_TOTAL_VAR, OU_SKY_INV_SIZE,
     OU_SLOPE_TEX0, OU_SLOPE_TEX1, OU_SLOPE_TEX2, OU_SLOPE_TEX3,
     OU_WC_TEX0, OU_WC_TEX1, OU_WC_TEX2, OU_WC_TEX3, OU_SKY_LEVEL_SCALE, OU_EPSILON_V, OU_SKY_TOP,
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME,
@@ -50,7 +50,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
     "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sea_radiance", "foam_radiance",
     "const_slope", "const_k", "unresolved_var", "whitecap_epsilon", "slope_scale", "slope_bias",
-    "wc_scale", "wc_bias", "lin_s0", "ds_offset", "total_var",
+    "wc_scale", "wc_bias", "lin_s0", "total_var",
     "sky_map_inv_size", "slope_tex0", "slope_tex1", "slope_tex2", "slope_tex3", "wc_tex0",
     "wc_tex1", "wc_tex2", "wc_tex3", "sky_level_scale", "whitecap_epsilon_v",
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
@@ -1603,10 +1603,21 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
         bind_tex(UNIT_PATTERNS + s, chain_at(&sl->slope_tex, 0), u[OU_SLOPE_TEX0 + s]);
-        if (s < kw)   /* kw <= nwc: whitecap textures exist for these (create_textures) */
+        if (r->d.quality == QUALITY_HIGH) {
+            /* the fetched patch's variance T (and below its foam memory's mean and variance)
+             * in the constants: ocean.frag's slot adds only what depends on its taps */
+            cs[2] += sl->top_slope[2];
+            cs[3] += sl->top_slope[3];
+        }
+        if (s < kw) {   /* kw <= nwc: whitecap textures exist for these (create_textures) */
             bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&sl->wc_tex, 0), u[OU_WC_TEX0 + s]);
-        else
+            if (r->d.quality == QUALITY_HIGH) {
+                ck[0] += sl->top_k[0];
+                ck[1] += sl->top_k[1];
+            }
+        } else {
             add_k_constants(r, sl, ck);
+        }
     }
     sea_light(r, sun, sea, foam);
     glUniformMatrix4fv(u[OU_WORLD_TO_CLIP], 1, GL_FALSE, (const GLfloat *)world_to_clip);
@@ -1650,15 +1661,9 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform2fv(u[OU_UNRESOLVED], 1, unres);
     glUniform1f(u[OU_EPSILON], r->t->whitecap_epsilon);
     glUniform1f(u[OU_EPSILON_V], r->t->whitecap_epsilon);
-    /* the linearisation (lin_frame); the pixel's ds = ds_offset + its fetched slopes */
-    float dso[2] = { 0.0f, 0.0f };
-    for (int s = 0; s < k; s++) {
-        /* both add dequantised slopes, blended (detile.h: the bias by the taps' weights) */
-        dso[0] -= r->slot[s].top_slope[0];
-        dso[1] -= r->slot[s].top_slope[1];
-    }
+    /* the linearisation (lin_frame); the pixel's ds = its fetched slopes' deviations from
+     * their patches' means (ocean.frag) */
     glUniform3fv(u[OU_LIN_S0], 1, r->vf.lin_s0);
-    glUniform2fv(u[OU_DS_OFFSET], 1, dso);
     glUniform2fv(u[OU_TOTAL_VAR], 1, r->vf.total_var);
 }
 
@@ -1978,12 +1983,12 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         smu[s][1] = sl->top_slope[1];
         smu[s][2] = within_at(&sl->level_var[0][0], 2, lev, sl->top_level[0]);
         smu[s][3] = within_at(&sl->level_var[0][1], 2, lev, sl->top_level[0]);
-        svar[s][0] = sl->top_slope[2];
-        svar[s][1] = sl->top_slope[3];
+        svar[s][0] = sl->top_slope[2] - smu[s][2];   /* T - W (ocean.frag add_slope) */
+        svar[s][1] = sl->top_slope[3] - smu[s][3];
         /* low quality's pixel variance (pixel_var_at): T and the level read at footprint
          * f, a f + b (the run's level, or the per-pixel LOD f + log2 density) */
-        wt_v[s][0] = svar[s][0];
-        wt_v[s][1] = svar[s][1];
+        wt_v[s][0] = sl->top_slope[2];
+        wt_v[s][1] = sl->top_slope[3];
         wt_v[s][2] = r->run_lod ? 0.0f : 1.0f;
         wt_v[s][3] = r->run_lod ? (float)key_lev : sl->log2_density[0];
         for (int l = 0; l < SLOT_LEVELS; l++)
@@ -1995,10 +2000,13 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         int wl = r->run_lod ? (int)((key >> (16 + 4 * s)) & 15u) : -1;
         wl = weight_terms(sl->level_kvar, 1, sl->top_level[1], sl->log2_density[1], wdrop, wl,
                           wc_lod[s], &cmax[s][1]);
+        /* ocean.frag add_whitecap: mean; B, -B W, T - W of W the level's within-texel
+         * variance, T the patch's, B the share of the fetched one to trust */
+        float w = within_at(sl->level_kvar, 1, wl, sl->top_level[1]), b = wc_trust(sl, w);
         wmu[s][0] = sl->top_k[0];
-        wmu[s][1] = within_at(sl->level_kvar, 1, wl, sl->top_level[1]);
-        wmu[s][2] = sl->top_k[1];
-        wmu[s][3] = wc_trust(sl, wmu[s][1]);
+        wmu[s][1] = b;
+        wmu[s][2] = -b * w;
+        wmu[s][3] = sl->top_k[1] - w;
     }
     glUniform4fv(u[OU_SLOT_LOD], SWELL_MAX_PATTERNS, &sl_lod[0][0]);
     glUniform4fv(u[OU_SLOPE_MEAN], SWELL_MAX_PATTERNS, &smu[0][0]);
