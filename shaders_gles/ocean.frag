@@ -37,6 +37,7 @@ uniform vec3 detile_shift[4];       // per slot: the camera's lattice cell modul
 uniform vec4 detile_atlas;          // 1 / the atlas size, the hash rows' origin (v)
 uniform vec4 slope_mean[4];         // per slot: the mean slope over its patch (its top level);
                                     // the mean within-texel variance at the level fetched, xy
+                                    // (low quality: the dequantisation's bias less that mean)
 uniform vec4 slot_lod[4];           // per slot: its weight's terms (slot_weight)
 uniform vec2 lod_cmax[4];           // per slot: the largest contrast factor, slopes, whitecaps
 uniform float sky_map_scale;
@@ -228,11 +229,12 @@ void add_whitecap(vec4 b, vec4 sc, vec4 mu, float g, vec4 a0, vec4 a1, vec4 a2)
 #define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))
 #else
 // Low quality takes the variance per vertex (ocean.vert fetched_var): the mean slope only,
-// g (sum_j w_j s_j - (sum_j w_j) m) (m is in s0, ocean.vert).
+// g (sum_j w_j s_j - (sum_j w_j) m) (m is in s0, ocean.vert), the bias less m in
+// slope_mean.zw.
 #ifdef SWELL_NO_DETILE
-#define SLOPE(i, tex, uv) g_ds += slot_weight(slot_lod[i], lod_cmax[i].x) * (slope_bias[i].xy - slope_mean[i].xy + slope_scale[i].xy * TAP(tex, uv, x).xy)
+#define SLOPE(i, tex, uv) g_ds += slot_weight(slot_lod[i], lod_cmax[i].x) * (slope_mean[i].zw + slope_scale[i].xy * TAP(tex, uv, x).xy)
 #else
-#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += slot_weight(slot_lod[i], lod_cmax[i].x) * (dot(g_tw, vec3(1.0)) * (slope_bias[i].xy - slope_mean[i].xy) + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy))
+#define SLOPE(i, tex, uv) detile(uv, detile_shift[i]); g_ds += slot_weight(slot_lod[i], lod_cmax[i].x) * (dot(g_tw, vec3(1.0)) * slope_mean[i].zw + slope_scale[i].xy * (g_tw.x * TAP(tex, uv, x).xy + g_tw.y * TAP(tex, uv, y).xy + g_tw.z * TAP(tex, uv, z).xy))
 #endif
 #endif
 

@@ -1985,6 +1985,10 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         smu[s][3] = within_at(&sl->level_var[0][1], 2, lev, sl->top_level[0]);
         svar[s][0] = sl->top_slope[2] - smu[s][2];   /* T - W (ocean.frag add_slope) */
         svar[s][1] = sl->top_slope[3] - smu[s][3];
+        if (r->d.quality != QUALITY_HIGH) {   /* low: the bias less the mean (ocean.frag) */
+            smu[s][2] = sl->slope->bias[0] - sl->top_slope[0];
+            smu[s][3] = sl->slope->bias[1] - sl->top_slope[1];
+        }
         /* low quality's pixel variance (pixel_var_at): T and the level read at footprint
          * f, a f + b (the run's level, or the per-pixel LOD f + log2 density) */
         wt_v[s][0] = sl->top_slope[2];
