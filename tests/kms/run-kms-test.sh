@@ -4,7 +4,7 @@
 # returns its verdict. Run by `make test-kms`.
 #
 # Usage: tests/kms/run-kms-test.sh BUILD_DIR      (e.g. build/rel; needs BUILD_DIR/tests/kms_probe)
-# Env:   KMS_TIMEOUT  seconds for the whole VM run (default 480)
+# Env:   KMS_TIMEOUT  seconds for the whole VM run (default 1200)
 #        CI=true      a missing VM kit is a failure, not a skip
 #        SWELL_KMS_FRAMES, SWELL_KMS_TOL  passed to the guest (see guest-test.sh)
 set -eu
@@ -61,7 +61,7 @@ fi
 echo "test-kms: QEMU accelerator $ACCEL"
 
 set +e
-"$HERE/run-vm.sh" -a "$ACCEL" -t "${KMS_TIMEOUT:-480}" "$CACHE" "$SHARE" \
+"$HERE/run-vm.sh" -a "$ACCEL" -t "${KMS_TIMEOUT:-1200}" "$CACHE" "$SHARE" \
     "sh tests/kms/guest-test.sh '$B' '$SHARE'"
 rc=$?
 set -e
@@ -71,5 +71,9 @@ awk -v a="$t0" -v b="$t1" -v c="$t2" -v s="$SHARE" 'BEGIN {
 if [ "$rc" -ne 0 ]; then
     echo "test-kms: FAIL (status $rc)" >&2
     exit 1
+fi
+if [ -s "$SHARE/flaky" ]; then
+    echo "test-kms: passed, but these steps hung once and passed when run again (their process" \
+         "states and kernel log are in $SHARE/out.log):" $(cat "$SHARE/flaky")
 fi
 echo "test-kms: all KMS checks passed"

@@ -71,7 +71,9 @@ qrc=$?
 set -e
 [ -f "$SHARE/out.log" ] && cat "$SHARE/out.log"
 if [ "$qrc" -eq 124 ]; then
-    echo "run-vm: the VM did not finish within $TIMEOUT s (console: $SHARE/console.log)" >&2
+    echo "run-vm: the VM did not finish within $TIMEOUT s (console: $SHARE/console.log); its" \
+         "last lines:" >&2
+    tail -n 20 "$SHARE/console.log" >&2
     exit 124
 fi
 if [ ! -f "$SHARE/status" ]; then
