@@ -18,8 +18,8 @@
 // QUALITY_HIGH: Ross BRDF sun (eq. 15), filtered sky (eq. 27 by LOD bias), effective Fresnel
 // (eq. 26) on Hu's Fresnel texture, refracted light (eq. 28), whitecaps (Dupuy eq. 6).
 // Otherwise (low quality, Hu's single pass made the same sea, cheaper): the same slope
-// moments, Ross sun, effective Fresnel and refracted light, with the sky unfiltered at the
-// mean slope (one fetch), the whitecap coverage and the haze per vertex (no whitecap table).
+// moments, Ross sun, effective Fresnel and refracted light, the sky filtered (eq. 27) at the
+// vertex's variance, the whitecap coverage and the haze per vertex (no whitecap table).
 #include "common.glsl"
 
 uniform sampler2D fresnel_tex;      // Hu §5.1: A = Fresnel at the bumped view vector; an
@@ -41,6 +41,10 @@ uniform vec4 slope_mean[4];         // per slot: the mean slope over its patch (
 uniform vec4 slot_lod[4];           // per slot: its weight's terms (slot_weight)
 uniform vec2 lod_cmax[4];           // per slot: the largest contrast factor, slopes, whitecaps
 uniform float sky_map_scale;
+uniform float sky_map_inv_size;     // 1 / texels
+uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
+uniform float sky_top_level;        // the sky map's last mip level
+uniform float sky_bias_max;         // the device's largest LOD bias (gpu.c)
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
 #ifdef QUALITY_HIGH
@@ -52,10 +56,6 @@ uniform vec4 wc_mean[4];            // per slot: the foam memory's mean over its
                                     // variance: the share of the fetched within-texel one to
                                     // trust B, -B W, T - W (add_whitecap)
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
-uniform float sky_map_inv_size;     // 1 / texels
-uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
-uniform float sky_top_level;        // the sky map's last mip level
-uniform float sky_bias_max;         // the device's largest LOD bias (gpu.c)
 uniform float whitecap_epsilon;     // Dupuy eq. 3 threshold on j
 uniform vec4 wc_scale[4];
 uniform vec4 wc_bias[4];
@@ -252,6 +252,59 @@ vec3 sky_run(vec2 uv)
 }
 
 #endif
+
+// The sky map filtered per eq. 27 at slope variance var: its footprint is 2 sigma du/dzeta in
+// texels, log2 of it log2(sigma) + log2(2 size du/dzeta).
+vec3 sky_eq27(vec2 uv, vec2 var)
+{
+#ifndef SWELL_RUN_LOD
+    // log2(2 sigma size du/dzeta) with du/dzeta = 1 / (1 + r_z) of the reflected ray r at the
+    // vertex's mean slope, read off its stereographic uv (common.glsl sky_map_uv): with d = uv
+    // - 1/2, 4 |d|^2 = (1 - r_z) / (1 + r_z), so 2 / (1 + r_z) = 1 + 4 |d|^2
+    vec2 dq = v_lin.zw - vec2(0.5);
+    float foot = log2(sqrt(max(var.x, var.y)) * (1.0 + 4.0 * dot(dq, dq)) / sky_map_inv_size);
+#endif
+#if defined(SWELL_RUN_LOD)
+    // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint as the renderer takes
+    // it for the run's rows (renderer.c set_run_lods), read from an atlas without mips, two
+    // levels blended (sky_run): a per-pixel LOD is llvmpipe's slow path (A/B, rough 1 km:
+    // 6.6-6.9x -> 6.0x the quad).
+    vec3 sky = sky_run(uv);
+#elif defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
+    // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
+    // widened in each direction to at least the filter's (a max, where a bias multiplies).
+    vec2 gx = dFdx(uv), gy = dFdy(uv);
+    float f = exp2(foot) * sky_map_inv_size;
+    gx *= max(1.0, f * inversesqrt(max(dot(gx, gx), 1e-8)));
+    gy *= max(1.0, f * inversesqrt(max(dot(gy, gy), 1e-8)));
+    vec3 sky = texture2DGradEXT(sky_tex, uv, gx, gy).rgb;
+#else
+    // gles2-min: no gradients, no explicit LOD, only a bias on the pixel's own LOD lambda.
+    // Eq. 27 wants the larger of lambda and the filter's footprint (as the gradient path
+    // takes); a bias of the whole footprint gave their sum, which blurred the sky to grey where
+    // lambda was high and left pixels of small variance sharp and bright (sparkles). So the
+    // bias is what the footprint asks beyond lambda, foot - lambda where positive, with lambda
+    // read from the map's A (each level's index, sky.h) by fetches at known biases b: a fetch
+    // sees lambda + b clamped to the map's levels [0, top], so it gives lambda = a - b where
+    // 0 < a < top (a = top: lambda >= top - b). A read at b = 0 lost every magnified pixel
+    // (lambda < 0), and the horizon's grid row, where lambda jumps per triangle down to -5,
+    // drew a sawtooth. So b1 = top - foot reads lambda in [foot - top, foot] (a1 = top above
+    // it: no bias), and where a1 = 0, b2 = 2 top - foot reads it in [foot - 2 top, foot - top].
+    // a1 > 0.02: above level 0 by at least one step of the 8-bit A (1/28 level). Biases stay
+    // within the device's limit. Below the window, as where a quad's mediump uv are equal
+    // (lambda = -inf), the sky stays too sharp.
+    float b1 = min(sky_top_level - foot, sky_bias_max);
+    float b2 = min(2.0 * sky_top_level - foot, sky_bias_max);
+    float a1 = texture2D(sky_tex, uv, b1).a * sky_level_scale;
+    float a2 = texture2D(sky_tex, uv, b2).a * sky_level_scale;
+    float lambda = a1 > 0.02 ? a1 - b1 : a2 - b2;
+    float bias = clamp(foot - lambda, 0.0, sky_bias_max);
+    vec3 sky = texture2D(sky_tex, uv, bias).rgb;
+#endif
+
+    return sky;
+}
+
 void main()
 {
     g_ds = vec2(0.0);   // ds = s - s0: the patches' means are in s0 (ocean.vert)
@@ -313,62 +366,15 @@ void main()
     // capped where the tone map is white anyway: no fp16 infinity reaches the mix below
     vec3 sun = min(sun_irr * min(p, 3.0e4), vec3(1.0e4));
 
+    // Sky: the filtered lookup of eq. 27 (sky_eq27) at the pixel's variance: low quality's
+    // per vertex, from the inverse variances it carries. Until this build low quality read the
+    // map at the implicit LOD on GPUs (no eq. 27 filter): at 8 m/s from 10 m, per-pixel LOD,
+    // its rows near the camera were 13 % darker than high's and those at the horizon 9 %
+    // brighter (test_render test_quality_match, now on both LOD paths).
 #ifdef QUALITY_HIGH
-    // Sky: the filtered lookup of eq. 27, whose footprint is 2 sigma du/dzeta in texels:
-    // log2 of it is log2(sigma) + the vertex's log2(2 size du/dzeta).
-#ifndef SWELL_RUN_LOD
-    // log2(2 sigma size du/dzeta) with du/dzeta = 1 / (1 + r_z) of the reflected ray r at the
-    // vertex's mean slope, read off its stereographic uv (common.glsl sky_map_uv): with d = uv
-    // - 1/2, 4 |d|^2 = (1 - r_z) / (1 + r_z), so 2 / (1 + r_z) = 1 + 4 |d|^2
-    vec2 dq = v_lin.zw - vec2(0.5);
-    float foot = log2(sqrt(max(var.x, var.y)) * (1.0 + 4.0 * dot(dq, dq)) / sky_map_inv_size);
-#endif
-#if defined(SWELL_RUN_LOD)
-    // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint as the renderer takes
-    // it for the run's rows (renderer.c set_run_lods), read from an atlas without mips, two
-    // levels blended (sky_run): a per-pixel LOD is llvmpipe's slow path (A/B, rough 1 km:
-    // 6.6-6.9x -> 6.0x the quad).
-    vec3 sky = sky_run(uv.zw) * sky_map_scale;
-#elif defined(SWELL_HAS_TEXTURE_LOD) && defined(SWELL_HAS_DERIVATIVES)
-    // With explicit gradients (gles2-ext, gles3): the pixel's own footprint on the map,
-    // widened in each direction to at least the filter's (a max, where a bias multiplies).
-    vec2 gx = dFdx(uv.zw), gy = dFdy(uv.zw);
-    float f = exp2(foot) * sky_map_inv_size;
-    gx *= max(1.0, f * inversesqrt(max(dot(gx, gx), 1e-8)));
-    gy *= max(1.0, f * inversesqrt(max(dot(gy, gy), 1e-8)));
-    vec3 sky = texture2DGradEXT(sky_tex, uv.zw, gx, gy).rgb * sky_map_scale;
+    vec3 sky = sky_eq27(uv.zw, var) * sky_map_scale;
 #else
-    // gles2-min: no gradients, no explicit LOD, only a bias on the pixel's own LOD lambda.
-    // Eq. 27 wants the larger of lambda and the filter's footprint (as the gradient path
-    // takes); a bias of the whole footprint gave their sum, which blurred the sky to grey where
-    // lambda was high and left pixels of small variance sharp and bright (sparkles). So the
-    // bias is what the footprint asks beyond lambda, foot - lambda where positive, with lambda
-    // read from the map's A (each level's index, sky.h) by fetches at known biases b: a fetch
-    // sees lambda + b clamped to the map's levels [0, top], so it gives lambda = a - b where
-    // 0 < a < top (a = top: lambda >= top - b). A read at b = 0 lost every magnified pixel
-    // (lambda < 0), and the horizon's grid row, where lambda jumps per triangle down to -5,
-    // drew a sawtooth. So b1 = top - foot reads lambda in [foot - top, foot] (a1 = top above
-    // it: no bias), and where a1 = 0, b2 = 2 top - foot reads it in [foot - 2 top, foot - top].
-    // a1 > 0.02: above level 0 by at least one step of the 8-bit A (1/28 level). Biases stay
-    // within the device's limit. Below the window, as where a quad's mediump uv are equal
-    // (lambda = -inf), the sky stays too sharp.
-    float b1 = min(sky_top_level - foot, sky_bias_max);
-    float b2 = min(2.0 * sky_top_level - foot, sky_bias_max);
-    float a1 = texture2D(sky_tex, uv.zw, b1).a * sky_level_scale;
-    float a2 = texture2D(sky_tex, uv.zw, b2).a * sky_level_scale;
-    float lambda = a1 > 0.02 ? a1 - b1 : a2 - b2;
-    float bias = clamp(foot - lambda, 0.0, sky_bias_max);
-    vec3 sky = texture2D(sky_tex, uv.zw, bias).rgb * sky_map_scale;
-#endif
-
-#else
-    // Low quality: the sky at the pixel's mean slope (no eq. 27 filter per pixel), with
-    // SWELL_RUN_LOD at the run's footprint (sky_run), elsewhere the implicit LOD.
-#ifdef SWELL_RUN_LOD
-    vec3 sky = sky_run(uv.zw) * sky_map_scale;
-#else
-    vec3 sky = texture2D(sky_tex, uv.zw).rgb * sky_map_scale;
-#endif
+    vec3 sky = sky_eq27(uv.zw, 0.5 / v_base.xy) * sky_map_scale;
 #endif
 
     // Refracted light, eq. 28.
