@@ -10,7 +10,7 @@
 // (renderer.c draw_runs), by texture2D of that level's own texture, which has no mips
 // (renderer.c chain_tex); the Fresnel texture, a smooth function of the bumped view, at level
 // 0 likewise, and the sky map at two neighbouring levels of an atlas blended by the pixel's
-// footprint (sky_run). Elsewhere the per-pixel implicit LOD.
+// footprint (sky_run). Elsewhere the per-pixel implicit LOD (the sky: sky_eq27).
 //
 // Per pixel only what depends on the pixel's own slope moments is evaluated: ocean.vert
 // linearises the rest about the vertex's mean slope s0 (see there), so the pixel adds the

@@ -2286,10 +2286,9 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                 "own LOD, read from the map's alpha (eq. 27), effective Fresnel "
               "(eq. 26) on Hu's Fresnel texture, refraction (eq. 28), whitecaps (Dupuy eq. 6)"
             : "low: one pass with the same slope moments, Ross BRDF sun (eq. 15), effective "
-              "Fresnel (eq. 26) and refraction (eq. 28); the sky unfiltered at the mean slope, "
-              "whitecaps (Dupuy eq. 6) and haze per vertex");
-    if (n > 0 && (size_t)n < size && r->d.quality == QUALITY_HIGH && !r->run_lod &&
-        !shader_has_gradients(&r->gpu->caps))
+              "Fresnel (eq. 26) and refraction (eq. 28); the sky filtered as high quality's "
+              "(eq. 27) at the vertex's variance, whitecaps (Dupuy eq. 6) and haze per vertex");
+    if (n > 0 && (size_t)n < size && !r->run_lod && !shader_has_gradients(&r->gpu->caps))
         n += snprintf(buf + n, size - (size_t)n, "sky LOD bias: at most %g (the device's "
                       "limit)\n", (double)r->gpu->caps.max_lod_bias);
     if (n > 0 && (size_t)n < size)
