@@ -1110,7 +1110,8 @@ static void test_resolved_drop(void **state)
  * sun, effective Fresnel and eq. 27's sky filter, without the whitecap tables and the haze per
  * pixel. On baked seas of 8 and 15 m/s wind, gles2-min, the lattice off in both (so both read
  * the same texels), from the surface, 1 km and 10 km, on both LOD paths: every 8 rows' mean
- * luminance within 5 % of high's.
+ * luminance within 5 % of high's; per-pixel LOD also towards a low sun from the surface (0.3-0.7 %,
+ * 11.6 % at 8 m/s before low filtered its sky).
  * - Per-pixel LOD (what GPUs take): measured 0.5-3.5 %. Until low quality filtered the sky
  *   per eq. 27 there too (ocean.frag sky_eq27), it read the sky map at the implicit LOD and
  *   its rows near the camera were 13.8 % darker than high's at 8 m/s from the surface.
@@ -1155,6 +1156,18 @@ static void test_quality_match(void **state)
                               at + 7, 100.0 * bound);
                 assert_true(worst < bound);
             }
+        /* towards a low sun (5 deg, the glitter down the middle), per-pixel LOD */
+        g_pixel_lod = 1;
+        render(TIER_GLES2_MIN, QUALITY_LOW, GEOMETRY_GRID, 5.0f, 30.0f, &cams[0], 2.0, fx.img,
+               NULL);
+        render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, 5.0f, 30.0f, &cams[0], 2.0, fx.img2,
+               NULL);
+        int at;
+        double worst = worst_row_means(fx.img, fx.img2, &at);
+        print_message("low vs high, %.0f m/s, surface, sun 5 deg ahead, per-pixel LOD: 8-row mean "
+                      "luminance within %.1f %% (worst rows %d-%d; held 5 %%)\n",
+                      (double)winds[w], 100.0 * worst, at, at + 7);
+        assert_true(worst < 0.05);
     }
     g_pixel_lod = 0;
     g_no_detile = 0;
