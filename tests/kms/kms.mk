@@ -3,7 +3,7 @@
 # kit into build/kms/<abi>/ (about 30 s), later runs reuse it.
 
 # seconds allowed for the whole VM run
-KMS_TIMEOUT ?= 1200
+KMS_TIMEOUT ?= 1500
 
 KMS_PROBE := $(BUILD)/tests/kms_probe
 

@@ -4,7 +4,7 @@
 # returns its verdict. Run by `make test-kms`.
 #
 # Usage: tests/kms/run-kms-test.sh BUILD_DIR      (e.g. build/rel; needs BUILD_DIR/tests/kms_probe)
-# Env:   KMS_TIMEOUT  seconds for the whole VM run (default 1200)
+# Env:   KMS_TIMEOUT  seconds for the whole VM run (default 1500)
 #        CI=true      a missing VM kit is a failure, not a skip
 #        SWELL_KMS_FRAMES, SWELL_KMS_TOL  passed to the guest (see guest-test.sh)
 set -eu
@@ -61,7 +61,7 @@ fi
 echo "test-kms: QEMU accelerator $ACCEL"
 
 set +e
-"$HERE/run-vm.sh" -a "$ACCEL" -t "${KMS_TIMEOUT:-1200}" "$CACHE" "$SHARE" \
+"$HERE/run-vm.sh" -a "$ACCEL" -t "${KMS_TIMEOUT:-1500}" "$CACHE" "$SHARE" \
     "sh tests/kms/guest-test.sh '$B' '$SHARE'"
 rc=$?
 set -e
