@@ -253,16 +253,16 @@ vec3 sky_run(vec2 uv)
 
 #endif
 
-// The sky map filtered per eq. 27 at slope variance var: its footprint is 2 sigma du/dzeta in
-// texels, log2 of it log2(sigma) + log2(2 size du/dzeta).
-vec3 sky_eq27(vec2 uv, vec2 var)
+// The sky map filtered per eq. 27 for slope deviation sigma (the larger axis's): its footprint
+// is 2 sigma du/dzeta in texels, log2 of it log2(sigma) + log2(2 size du/dzeta).
+vec3 sky_eq27(vec2 uv, float sigma)
 {
 #ifndef SWELL_RUN_LOD
     // log2(2 sigma size du/dzeta) with du/dzeta = 1 / (1 + r_z) of the reflected ray r at the
     // vertex's mean slope, read off its stereographic uv (common.glsl sky_map_uv): with d = uv
     // - 1/2, 4 |d|^2 = (1 - r_z) / (1 + r_z), so 2 / (1 + r_z) = 1 + 4 |d|^2
     vec2 dq = v_lin.zw - vec2(0.5);
-    float foot = log2(sqrt(max(var.x, var.y)) * (1.0 + 4.0 * dot(dq, dq)) / sky_map_inv_size);
+    float foot = log2(sigma * (1.0 + 4.0 * dot(dq, dq)) / sky_map_inv_size);
 #endif
 #if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint as the renderer takes
@@ -372,9 +372,9 @@ void main()
     // its rows near the camera were 13 % darker than high's and those at the horizon 9 %
     // brighter (test_render test_quality_match, now on both LOD paths).
 #ifdef QUALITY_HIGH
-    vec3 sky = sky_eq27(uv.zw, var) * sky_map_scale;
+    vec3 sky = sky_eq27(uv.zw, sqrt(max(var.x, var.y))) * sky_map_scale;
 #else
-    vec3 sky = sky_eq27(uv.zw, 0.5 / v_base.xy) * sky_map_scale;
+    vec3 sky = sky_eq27(uv.zw, inversesqrt(2.0 * min(v_base.x, v_base.y))) * sky_map_scale;
 #endif
 
     // Refracted light, eq. 28.
