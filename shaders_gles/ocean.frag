@@ -369,7 +369,7 @@ void main()
     // Sky: the filtered lookup of eq. 27 (sky_eq27) at the pixel's variance: low quality's
     // per vertex, from the inverse variances it carries. Until this build low quality read the
     // map at the implicit LOD on GPUs (no eq. 27 filter): at 8 m/s from 10 m, per-pixel LOD,
-    // its rows near the camera were 13 % darker than high's and those at the horizon 9 %
+    // its rows near the camera were 13.8 % darker than high's and those at the horizon 9 %
     // brighter (test_render test_quality_match, now on both LOD paths).
 #ifdef QUALITY_HIGH
     vec3 sky = sky_eq27(uv.zw, sqrt(max(var.x, var.y))) * sky_map_scale;
