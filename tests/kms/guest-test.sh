@@ -53,9 +53,7 @@ run_watched() {
         fi
         sleep 0.2
     done
-    wait "$pid"
-    [ $? -eq 0 ] && return 0
-    return 1
+    wait "$pid" || return 1
 }
 
 step() {
