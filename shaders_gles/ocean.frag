@@ -53,8 +53,10 @@ uniform vec2 slope_var[4];          // per slot: the slope variance over its pat
                                     // level's mean within-texel variance, T - W, xy
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
 uniform vec4 wc_mean[4];            // per slot: the foam memory's mean over its patch; of its
-                                    // variance: the share of the fetched within-texel one to
-                                    // trust B, -B W, T - W (add_whitecap)
+                                    // variance: c's scale, -W, T - W (add_whitecap)
+uniform float foam_detail;          // 1 / the fetched slots' slope variance x + y (main)
+uniform vec4 wc_trust[4];           // per slot: B and c / c's scale at V_FOOT = 0, and their
+                                    // slopes per unit of it (add_whitecap)
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
 uniform float whitecap_epsilon;     // Dupuy eq. 3 threshold on j
 uniform vec4 wc_scale[4];
@@ -124,6 +126,8 @@ vec2 g_ds;
 vec2 g_var;
 float g_mu;
 float g_kvar;
+float g_dvar;                       // the foam memory's variance drawn as detail (add_whitecap)
+vec2 g_dsw;                         // g_ds of the slots up to the last with whitecaps
 
 // No pattern repeats on its tile (detile.h): a slot's tables are read at the three random
 // offsets of its lattice triangle, with weights g_tw (normalised: sum g_tw^2 = 1) and uv
@@ -204,29 +208,38 @@ void add_slope(vec4 b, vec4 sc, vec4 m, vec2 d, float g, vec4 a0, vec4 a1, vec4 
 #define SLOPE(i, tex, uv) DETILE(uv, detile_shift[i]); add_slope(slope_bias[i], slope_scale[i], slope_mean[i], slope_var[i], slot_weight(slot_lod[i], lod_cmax[i].x), TAPS(tex, uv))
 
 
-void add_whitecap(vec4 b, vec4 sc, vec4 mu, float g, vec4 a0, vec4 a1, vec4 a2)
+void add_whitecap(vec4 b, vec4 sc, vec4 mu, vec4 tr, float g, vec4 a0, vec4 a1, vec4 a2)
 {
     // Dupuy eq. 7-8 per pattern, on the foam memory m_i of k_i; the variance is summed per
     // pattern (sum <m_i^2> - <m_i>^2), the same uncorrelated-pattern assumption as eq. 8
     // without its cross terms of the means. The taps blend m's deviation from its mean mu.x;
-    // weighted by g as the slopes are (mu.y, mu.z: the level's mean within-texel variance,
-    // the patch's variance). The fetched within-texel variance is <m^2> - <m>^2 of two 8-bit
-    // channels: on fine levels, where it is far below their steps, it is their rounding (and
-    // llvmpipe's 8-bit filtering), and through eq. 6's erf that noise drew a mesh of dots in
-    // the foam up close. So it enters shrunk towards the level's mean, by mu.w = S^2 / (S^2 +
-    // N^2) (renderer.c: S the level's mean, N the rounding's deviation): as fetched on the
-    // coarse levels, the level's mean where it is noise.
-    // (mu.x and T are in the vertex's constants, as the slopes' are: mu = (mean, B, -B W,
-    // T - W), the slot adds h (B v - B W - h (T - W)))
+    // weighted by g as the slopes are (mu.z, mu.w: -W the level's mean within-texel variance,
+    // T - W, T the patch's). The fetched within-texel variance v = <m^2> - <m>^2 of two 8-bit
+    // channels is not all signal: on fine levels it is their rounding (and llvmpipe's 8-bit
+    // filtering), and where level 0 is magnified it is the variance of the bilinear mix of
+    // neighbouring texels, largest between texel centres. Through eq. 6's erf the first drew
+    // a mesh of dots in the foam up close, the second the texel grid (blocks). So the pixel
+    // takes B v + (1 - B) c: B = S^2 / (S^2 + N^2) the share of v to trust at the level it
+    // reads (renderer.c wc_trust_terms: S that level's mean, N the rounding's deviation; 0
+    // where level 0 is magnified), c level 0's mean in the rest's place, falling with the
+    // footprint below a texel as a linear field's variance over the pixel does. B and c / c0
+    // are lines in the pixel's footprint V_FOOT, clamped (tr; c0 = mu.y), so they follow the
+    // pixel on either LOD path.
+    // (mu.x and T are in the vertex's constants, as the slopes' are: the slot adds
+    // h (B v + (1 - B) c - W - h (T - W)), the first two at h = 1)
     vec4 k0 = b + sc * a0, k1 = b + sc * a1, k2 = b + sc * a2;
     g_mu += g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
     float v = dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
                                         k2.y - k2.x * k2.x), vec3(0.0)));
+    vec2 bc = clamp(tr.xy + V_FOOT * tr.zw, 0.0, 1.0);
     float h = min(g, 1.0);
-    g_kvar += h * (mu.y * v + mu.z - h * mu.w);
+    bc.y = mix(0.35, 1.0, bc.y);
+    g_kvar += h * (mix(bc.y * mu.y, v, bc.x) + mu.z - h * mu.w);
+    g_dvar += h * (1.0 - bc.x) * (1.0 - bc.y) * mu.y;
+    g_dsw = g_ds;
 }
 // (one line each: GLSL ES 1.00 has no line continuation)
-#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))
+#define WHITECAP(i, tex, uv) add_whitecap(wc_bias[i], wc_scale[i], wc_mean[i], wc_trust[i], slot_weight(wc_lod[i], lod_cmax[i].y), TAPS(tex, uv))
 #else
 // Low quality takes the variance per vertex (ocean.vert fetched_var): the mean slope only,
 // g (sum_j w_j s_j - (sum_j w_j) m) (m is in s0, ocean.vert), the bias less m in
@@ -312,6 +325,8 @@ void main()
 #ifdef QUALITY_HIGH
     g_mu = v_base.z;
     g_kvar = v_base.w;
+    g_dvar = 0.0;
+    g_dsw = vec2(0.0);
 #endif
     // each slot's whitecaps with its slopes: they share its taps
 #if FS_PATTERNS > 0
@@ -384,7 +399,14 @@ void main()
     // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments of the foam memory (summed
     // with the slopes above).
 #if FS_WHITECAPS > 0
-    float cover = whitecap_cover(whitecap_epsilon, g_mu, g_kvar);
+    // The variance below a texel that add_whitecap took out of eq. 6 is drawn instead:
+    // the slope deviation of the slots after the last with whitecaps over its standard
+    // deviation, a Gaussian field of shorter waves than the foam's and independent of them
+    // (the foam's own slopes are not: foam sits on their crests), times its deviation
+    // (foam_detail = 1 / those slots' slope variance x + y, 0 without them).
+    vec2 dd = g_ds - g_dsw;
+    float cover = whitecap_cover(whitecap_epsilon,
+                                 g_mu + sqrt(g_dvar * foam_detail) * (dd.x + dd.y), g_kvar);
 #else
     float cover = v_base.z;    // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif

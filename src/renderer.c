@@ -44,7 +44,7 @@ enum ocean_uniform {
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME,
     OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
     OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
-    OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_COUNT
+    OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_COUNT
 };
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
@@ -56,7 +56,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
     "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
     "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "var_knot_v",
-    "var_knot_frame_v", "sky_run_lod", "sky_run_blk"
+    "var_knot_frame_v", "sky_run_lod", "sky_run_blk", "wc_trust", "foam_detail"
 };
 
 enum sky_uniform {
@@ -1956,6 +1956,25 @@ static void pixel_var_at(const float sl_lod[][4], const float cmax[][2], const f
     }
 }
 
+/* ocean.frag add_whitecap's B and c / c0 as lines in the pixel's footprint f (log2 m), clamped
+ * to [0, 1] there, for slot sl: tr = (B, c / c0 at f = 0; their slopes per unit of f). At the
+ * level lambda = f + log2 density the pixel reads, B runs through wc_trust at levels 0 and 1
+ * (it is 0.2-0.25 at level 0 and 0.7-0.85 at level 1 in 8-15 m/s bakes, 0.92-0.96 at level 2,
+ * where the line is already 1), 0 where level 0 is magnified (lambda < -B0 / (B1 - B0)); c / c0
+ * is 1 down to level 0 and falls to 0 where a texel spans two pixels (lambda = -1): a linear
+ * field's variance over a footprint goes as its square, 1/4 there. c0 = W0, level 0's mean. */
+static void wc_trust_terms(const struct fs_slot *sl, float tr[4], float *c0)
+{
+    float w0 = sl->level_kvar[0], w1 = sl->level_kvar[sl->top_level[1] > 0 ? 1 : 0];
+    float b0 = wc_trust(sl, w0), b1 = wc_trust(sl, w1), d = sl->log2_density[1];
+    float db = b1 > b0 ? b1 - b0 : 0.0f;
+    *c0 = w0;
+    tr[0] = b0 + db * d;
+    tr[1] = 1.0f + d;
+    tr[2] = db;
+    tr[3] = 1.0f;
+}
+
 static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix,
                           float lf_far, float lf_near)
 {
@@ -1964,8 +1983,11 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     float smu[SWELL_MAX_PATTERNS][4] = { { 0 } }, wmu[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float svar[SWELL_MAX_PATTERNS][2] = { { 0 } }, cmax[SWELL_MAX_PATTERNS][2] = { { 0 } };
     float wt_v[SWELL_MAX_PATTERNS][4] = { { 0 } }, wfrac[SLOT_LEVELS][4] = { { 0 } };
+    float wtr[SWELL_MAX_PATTERNS][4] = { { 0 } }, tvar = 0.0f;
     for (int s = 0; s < k && s < r->nfs; s++) {
         const struct fs_slot *sl = &r->slot[s];
+        if (s >= kw)   /* ocean.frag: the detail's slots */
+            tvar += sl->top_slope[2] + sl->top_slope[3];
         float drop = r->d.fetch_all ? INFINITY : slot_drop_foot(r, s, DROP_FOOTPRINT, 1);
         int key_lev = (int)((key >> (4 * s)) & 15u);
         /* on x + y: the contrast of both */
@@ -2004,18 +2026,20 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         int wl = r->run_lod ? (int)((key >> (16 + 4 * s)) & 15u) : -1;
         wl = weight_terms(sl->level_kvar, 1, sl->top_level[1], sl->log2_density[1], wdrop, wl,
                           wc_lod[s], &cmax[s][1]);
-        /* ocean.frag add_whitecap: mean; B, -B W, T - W of W the level's within-texel
-         * variance, T the patch's, B the share of the fetched one to trust */
-        float w = within_at(sl->level_kvar, 1, wl, sl->top_level[1]), b = wc_trust(sl, w);
+        /* ocean.frag add_whitecap: mean; c0, -W, T - W of W the level's within-texel
+         * variance (the fade's), T the patch's; B and c / c0 per pixel (wc_trust_terms) */
+        float w = within_at(sl->level_kvar, 1, wl, sl->top_level[1]);
         wmu[s][0] = sl->top_k[0];
-        wmu[s][1] = b;
-        wmu[s][2] = -b * w;
+        wc_trust_terms(sl, wtr[s], &wmu[s][1]);
+        wmu[s][2] = -w;
         wmu[s][3] = sl->top_k[1] - w;
     }
     glUniform4fv(u[OU_SLOT_LOD], SWELL_MAX_PATTERNS, &sl_lod[0][0]);
     glUniform4fv(u[OU_SLOPE_MEAN], SWELL_MAX_PATTERNS, &smu[0][0]);
     glUniform4fv(u[OU_WC_LOD], SWELL_MAX_PATTERNS, &wc_lod[0][0]);
     glUniform4fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
+    glUniform4fv(u[OU_WC_TRUST], SWELL_MAX_PATTERNS, &wtr[0][0]);
+    glUniform1f(u[OU_FOAM_DETAIL], tvar > 0.0f ? 1.0f / tvar : 0.0f);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
     glUniform2fv(u[OU_LOD_FRAME], 1, r->vf.lod_frame);
