@@ -54,7 +54,8 @@ uniform vec2 slope_var[4];          // per slot: the slope variance over its pat
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
 uniform vec4 wc_mean[4];            // per slot: the foam memory's mean over its patch; of its
                                     // variance: c's scale, -W, T - W (add_whitecap)
-uniform float foam_detail;          // 1 / the fetched slots' slope variance x + y (main)
+uniform vec2 foam_detail;           // 1 / the detail's slope variance x + y (main); the share
+                                    // of c kept as eq. 6's blur (add_whitecap)
 uniform vec4 wc_trust[4];           // per slot: B and c / c's scale at V_FOOT = 0, and their
                                     // slopes per unit of it (add_whitecap)
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
@@ -219,21 +220,22 @@ void add_whitecap(vec4 b, vec4 sc, vec4 mu, vec4 tr, float g, vec4 a0, vec4 a1, 
     // filtering), and where level 0 is magnified it is the variance of the bilinear mix of
     // neighbouring texels, largest between texel centres. Through eq. 6's erf the first drew
     // a mesh of dots in the foam up close, the second the texel grid (blocks). So the pixel
-    // takes B v + (1 - B) c: B = S^2 / (S^2 + N^2) the share of v to trust at the level it
+    // takes B v + (1 - B) c0: B = S^2 / (S^2 + N^2) the share of v to trust at the level it
     // reads (renderer.c wc_trust_terms: S that level's mean, N the rounding's deviation; 0
-    // where level 0 is magnified), c level 0's mean in the rest's place, falling with the
-    // footprint below a texel as a linear field's variance over the pixel does. B and c / c0
-    // are lines in the pixel's footprint V_FOOT, clamped (tr; c0 = mu.y), so they follow the
-    // pixel on either LOD path.
+    // where level 0 is magnified), c0 level 0's mean in the rest's place. B and s, the share
+    // of c0 left to eq. 6's blur, are lines in the pixel's footprint V_FOOT, clamped (tr;
+    // c0 = mu.y), so they follow the pixel on either LOD path: s is 1 down to level 0 and
+    // falls to foam_detail.y where a texel spans two pixels; the rest of c0 is drawn as
+    // detail (g_dvar, main), or with no detail to draw (foam_detail.y = 1) stays blur.
     // (mu.x and T are in the vertex's constants, as the slopes' are: the slot adds
-    // h (B v + (1 - B) c - W - h (T - W)), the first two at h = 1)
+    // h (B v + (1 - B) s c0 - W - h (T - W)), the first two at h = 1)
     vec4 k0 = b + sc * a0, k1 = b + sc * a1, k2 = b + sc * a2;
     g_mu += g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
     float v = dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
                                         k2.y - k2.x * k2.x), vec3(0.0)));
     vec2 bc = clamp(tr.xy + V_FOOT * tr.zw, 0.0, 1.0);
     float h = min(g, 1.0);
-    bc.y = mix(0.35, 1.0, bc.y);
+    bc.y = mix(foam_detail.y, 1.0, bc.y);
     g_kvar += h * (mix(bc.y * mu.y, v, bc.x) + mu.z - h * mu.w);
     g_dvar += h * (1.0 - bc.x) * (1.0 - bc.y) * mu.y;
     g_dsw = g_ds;
@@ -406,7 +408,7 @@ void main()
     // (foam_detail = 1 / those slots' slope variance x + y, 0 without them).
     vec2 dd = g_ds - g_dsw;
     float cover = whitecap_cover(whitecap_epsilon,
-                                 g_mu + sqrt(g_dvar * foam_detail) * (dd.x + dd.y), g_kvar);
+                                 g_mu + sqrt(g_dvar * foam_detail.x) * (dd.x + dd.y), g_kvar);
 #else
     float cover = v_base.z;    // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif

@@ -1205,7 +1205,8 @@ static inline void k_texel(struct grid_pattern *p, int lev, double x, double y,
 /* The share of a level-0 variance a vertex keeps where the level is magnified (footprint r
  * texels, r < 1): the bilinear mix of neighbouring texels' moments is not variance within the
  * footprint, which goes to 0 with it. 1 from r = 1, 0 at r = 1/2, linear in r between (within
- * 0.09 of 1 + log2 r, ocean.frag add_whitecap's c line in the level). */
+ * 0.09 of 1 + log2 r, ocean.frag add_whitecap's s line in the level). Not where level 0
+ * is already the flat level (the patch's top texel, k_texel). */
 static inline float magnified_share(float r)
 {
     float s = 2.0f * r - 1.0f;
@@ -1230,7 +1231,8 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
             k_texel(p, lev, f->mx0[lev] + g->rx[k] * f->mk[lev],
                     f->my0[lev] + g->ry[k] * f->mk[lev], q_top, q);
             vx[GRID_A_K] += q[0];
-            vx[GRID_A_K + 1] += lev ? q[1] : q[1] * magnified_share(g->foot[k] * f->lev_k);
+            vx[GRID_A_K + 1] += lev || p->k_flat == 0 ? q[1]
+                                                      : q[1] * magnified_share(g->foot[k] * f->lev_k);
         }
         return;
     }
@@ -1248,7 +1250,8 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
             kv += w * w * q[1];
         }
         vx[GRID_A_K] += km;
-        vx[GRID_A_K + 1] += lev ? kv : kv * magnified_share(g->foot[k] * f->lev_k);
+        vx[GRID_A_K + 1] += lev || p->k_flat == 0 ? kv
+                                                  : kv * magnified_share(g->foot[k] * f->lev_k);
     }
 }
 

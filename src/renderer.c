@@ -1956,13 +1956,20 @@ static void pixel_var_at(const float sl_lod[][4], const float cmax[][2], const f
     }
 }
 
-/* ocean.frag add_whitecap's B and c / c0 as lines in the pixel's footprint f (log2 m), clamped
- * to [0, 1] there, for slot sl: tr = (B, c / c0 at f = 0; their slopes per unit of f). At the
- * level lambda = f + log2 density the pixel reads, B runs through wc_trust at levels 0 and 1
- * (it is 0.2-0.25 at level 0 and 0.7-0.85 at level 1 in 8-15 m/s bakes, 0.92-0.96 at level 2,
- * where the line is already 1), 0 where level 0 is magnified (lambda < -B0 / (B1 - B0)); c / c0
- * is 1 down to level 0 and falls to 0 where a texel spans two pixels (lambda = -1): a linear
- * field's variance over a footprint goes as its square, 1/4 there. c0 = W0, level 0's mean. */
+/* The share of level 0's variance below a texel that ocean.frag add_whitecap keeps as eq. 6's
+ * blur where a texel spans two pixels or more (the rest is drawn as detail from the finer
+ * patterns' slopes, main): 0 drew hard, frayed edges (storm from 15 m), 0.35 soft ones with
+ * the detail in them; a look, not a measurement. */
+#define FOAM_BLUR_SHARE 0.35f
+
+/* ocean.frag add_whitecap's B and s (the share of c0 left to eq. 6's blur, before its floor
+ * FOAM_BLUR_SHARE) as lines in the pixel's footprint f (log2 m), clamped to [0, 1] there, for
+ * slot sl: tr = (B, s at f = 0; their slopes per unit of f). At the level lambda = f + log2
+ * density the pixel reads, B runs through wc_trust at levels 0 and 1 (0.2-0.25 at level 0 and
+ * 0.7-0.85 at level 1 in 8-15 m/s bakes, 0.92-0.96 at level 2, where the line is already 1),
+ * 0 where level 0 is magnified (lambda < -B0 / (B1 - B0)); s is 1 down to level 0 and 0 where
+ * a texel spans two pixels (lambda = -1): a linear field's variance over a footprint goes as
+ * its square, 1/4 there. c0 = W0, level 0's mean. */
 static void wc_trust_terms(const struct fs_slot *sl, float tr[4], float *c0)
 {
     float w0 = sl->level_kvar[0], w1 = sl->level_kvar[sl->top_level[1] > 0 ? 1 : 0];
@@ -2027,7 +2034,7 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
         wl = weight_terms(sl->level_kvar, 1, sl->top_level[1], sl->log2_density[1], wdrop, wl,
                           wc_lod[s], &cmax[s][1]);
         /* ocean.frag add_whitecap: mean; c0, -W, T - W of W the level's within-texel
-         * variance (the fade's), T the patch's; B and c / c0 per pixel (wc_trust_terms) */
+         * variance (the fade's), T the patch's; B and s per pixel (wc_trust_terms) */
         float w = within_at(sl->level_kvar, 1, wl, sl->top_level[1]);
         wmu[s][0] = sl->top_k[0];
         wc_trust_terms(sl, wtr[s], &wmu[s][1]);
@@ -2039,7 +2046,9 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     glUniform4fv(u[OU_WC_LOD], SWELL_MAX_PATTERNS, &wc_lod[0][0]);
     glUniform4fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
     glUniform4fv(u[OU_WC_TRUST], SWELL_MAX_PATTERNS, &wtr[0][0]);
-    glUniform1f(u[OU_FOAM_DETAIL], tvar > 0.0f ? 1.0f / tvar : 0.0f);
+    /* without slots finer than the foam's, no detail: c stays eq. 6's blur */
+    glUniform2f(u[OU_FOAM_DETAIL], tvar > 0.0f ? 1.0f / tvar : 0.0f,
+                tvar > 0.0f ? FOAM_BLUR_SHARE : 1.0f);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
     glUniform2fv(u[OU_LOD_FRAME], 1, r->vf.lod_frame);

@@ -27,6 +27,11 @@ static float frand(void)
     return (float)(rng >> 8) / 16777216.0f;
 }
 
+/* With g_moments, the whitecap tables' second channel is the first's square plus a little
+ * (a foam memory's <m^2>, as the bake's): their means then hold the variance to finer levels
+ * than the independent channels' (grid.c k_flat_level), so vertices read level 0. */
+static int g_moments;
+
 /* Pattern i's disp (n_geo, 1 level), slope and whitecap (n, all levels) tables of random,
  * smooth-ish values (a few sines plus noise), quantised as the bake does. */
 static void add_pattern(struct swell_tables *s, int i, int n_geo, int n, float size_m,
@@ -57,6 +62,9 @@ static void add_pattern(struct swell_tables *s, int i, int n_geo, int n, float s
                         chain[(((size_t)f * w + y) * w + x) * 4 + c] =
                             (float)(amp_m * (sin(ph) + 0.2 * frand()) + (c == 2 ? 0.5 : 0.0));
                     }
+        if (g_moments && kinds[k] == TABLE_WHITECAP)
+            for (size_t e = 0; e < (size_t)F * w * w; e++)
+                chain[4 * e + 1] = chain[4 * e] * chain[4 * e] + 0.01f * (float)frand();
         quantize_build_mips(chain, w, w, F, levels);
         assert_int_equal(quantize_table(t, chain, &err), 0);
         free(chain);
@@ -197,6 +205,8 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
  * than a blend block. */
 /* k-only vertices checked, by lattice (off, on) and by whether they took the flat top texel */
 static int g_k_checked[2][2];
+static int g_k_magnified;   /* ...of them at a magnified level 0 (grid.c magnified_share) */
+static double g_alt = 6.0;  /* the camera's altitude, m */
 
 /* detile 0: grid_desc no_detile, the reference reads one tap at no offset; k_only: pattern 0
  * is not a CPU pattern but one whose whitecap moments alone are resolved per vertex (grid.h
@@ -241,7 +251,7 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
     camera_defaults(&c);
     c.pos[0] = cx;
     c.pos[1] = cy;
-    c.pos[2] = 6.0;
+    c.pos[2] = g_alt;
     c.heading_deg = 70.0f;
     c.pitch_deg = -20.0f;
     for (size_t ti = 0; ti < sizeof(times) / sizeof(times[0]); ti++) {
@@ -316,6 +326,13 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                     km += wj * (q[0] - k_mean);
                     kv += wj * wj * fmax(q[1] - q[0] * q[0], 0.0);
                 }
+                /* k-only, level 0 magnified (r texels per footprint under 1): the share 2 r - 1
+                 * of the bilinear mix's variance (grid.c magnified_share) */
+                double r0 = foot * wt->width / s.pattern[0].size_m;
+                if (k_only && klev == 0 && r0 < 1.0) {
+                    kv *= fmax(2.0 * r0 - 1.0, 0.0);
+                    g_k_magnified++;
+                }
                 double tol_s = 0.01 * st->scale[0] / 255.0, tol_w = 0.01 * wt->scale[0] / 255.0;
                 /* and what the float rest position's rounding (2 ulp of its distance) moves at
                  * the level's texel: the horizon rows (grid.h) put far vertices on fine levels */
@@ -361,9 +378,18 @@ static void test_grid_against_reference(void **state)
     check_grid_against_reference(1, 0, -40000.375, 38000.5, 0, 1);
     check_grid_against_reference(0, 0, 1234.5, -321.25, 0, 1);
     check_grid_against_reference(1, 0, -40000.375, 38000.5, 1, 1);
+    /* low enough that the nearest vertices' footprints are under a texel */
+    g_alt = 0.3;
+    g_moments = 1;
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 0, 1);
+    check_grid_against_reference(0, 0, 1234.5, -321.25, 1, 1);
+    g_moments = 0;
+    g_alt = 6.0;
     for (int d = 0; d < 2; d++)
         for (int flat = 0; flat < 2; flat++)
             assert_true(g_k_checked[d][flat] > 10);
+    print_message("whitecaps per vertex: %d vertices at a magnified level 0\n", g_k_magnified);
+    assert_true(g_k_magnified > 10);
 }
 
 /* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
