@@ -233,11 +233,12 @@ void add_whitecap(vec4 b, vec4 sc, vec4 mu, vec4 tr, float g, vec4 a0, vec4 a1, 
     g_mu += g * dot(g_tw, vec3(k0.x, k1.x, k2.x) - vec3(mu.x));
     float v = dot(g_tw * g_tw, max(vec3(k0.y - k0.x * k0.x, k1.y - k1.x * k1.x,
                                         k2.y - k2.x * k2.x), vec3(0.0)));
-    vec2 bc = clamp(tr.xy + V_FOOT * tr.zw, 0.0, 1.0);
+    vec2 bc = clamp(tr.xy + V_FOOT * tr.zw, vec2(0.0, foam_detail.y), vec2(1.0));
     float h = min(g, 1.0);
-    bc.y = mix(foam_detail.y, 1.0, bc.y);
     g_kvar += h * (mix(bc.y * mu.y, v, bc.x) + mu.z - h * mu.w);
-    g_dvar += h * (1.0 - bc.x) * (1.0 - bc.y) * mu.y;
+    // (the detail's share without h and 1 - B: s < 1 only where a texel spans pixels, where B
+    // is 0 and no fade runs)
+    g_dvar += (1.0 - bc.y) * mu.y;
     g_dsw = g_ds;
 }
 // (one line each: GLSL ES 1.00 has no line continuation)

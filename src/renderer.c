@@ -1962,24 +1962,24 @@ static void pixel_var_at(const float sl_lod[][4], const float cmax[][2], const f
  * the detail in them; a look, not a measurement. */
 #define FOAM_BLUR_SHARE 0.35f
 
-/* ocean.frag add_whitecap's B and s (the share of c0 left to eq. 6's blur, before its floor
- * FOAM_BLUR_SHARE) as lines in the pixel's footprint f (log2 m), clamped to [0, 1] there, for
- * slot sl: tr = (B, s at f = 0; their slopes per unit of f). At the level lambda = f + log2
- * density the pixel reads, B runs through wc_trust at levels 0 and 1 (0.2-0.25 at level 0 and
- * 0.7-0.85 at level 1 in 8-15 m/s bakes, 0.92-0.96 at level 2, where the line is already 1),
- * 0 where level 0 is magnified (lambda < -B0 / (B1 - B0)); s is 1 down to level 0 and 0 where
- * a texel spans two pixels (lambda = -1): a linear field's variance over a footprint goes as
- * its square, 1/4 there. c0 = W0, level 0's mean. */
-static void wc_trust_terms(const struct fs_slot *sl, float tr[4], float *c0)
+/* ocean.frag add_whitecap's B and s (the share of c0 left to eq. 6's blur) as lines in the
+ * pixel's footprint f (log2 m), clamped to [0, 1] and [blur, 1] there, for slot sl: tr = (B, s
+ * at f = 0; their slopes per unit of f). At the level lambda = f + log2 density the pixel
+ * reads, B runs through wc_trust at levels 0 and 1 (0.2-0.25 at level 0 and 0.7-0.85 at level
+ * 1 in 8-15 m/s bakes, 0.92-0.96 at level 2, where the line is already 1), 0 where level 0 is
+ * magnified (lambda < -B0 / (B1 - B0)); s is 1 down to level 0 and blur where a texel spans
+ * two pixels (lambda = -1; a linear field's variance over a footprint goes as its square, 1/4
+ * there): the rest is drawn as detail. c0 = W0, level 0's mean. */
+static void wc_trust_terms(const struct fs_slot *sl, float blur, float tr[4], float *c0)
 {
     float w0 = sl->level_kvar[0], w1 = sl->level_kvar[sl->top_level[1] > 0 ? 1 : 0];
     float b0 = wc_trust(sl, w0), b1 = wc_trust(sl, w1), d = sl->log2_density[1];
     float db = b1 > b0 ? b1 - b0 : 0.0f;
     *c0 = w0;
     tr[0] = b0 + db * d;
-    tr[1] = 1.0f + d;
+    tr[1] = 1.0f + (1.0f - blur) * d;   /* blur + (1 - blur) (1 + lambda), clamped at blur */
     tr[2] = db;
-    tr[3] = 1.0f;
+    tr[3] = 1.0f - blur;
 }
 
 static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix,
@@ -1991,10 +1991,12 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     float svar[SWELL_MAX_PATTERNS][2] = { { 0 } }, cmax[SWELL_MAX_PATTERNS][2] = { { 0 } };
     float wt_v[SWELL_MAX_PATTERNS][4] = { { 0 } }, wfrac[SLOT_LEVELS][4] = { { 0 } };
     float wtr[SWELL_MAX_PATTERNS][4] = { { 0 } }, tvar = 0.0f;
+    for (int s = kw; s < k && s < r->nfs; s++)   /* ocean.frag main: the detail's slots */
+        tvar += r->slot[s].top_slope[2] + r->slot[s].top_slope[3];
+    /* without slots finer than the foam's, no detail: c0 stays eq. 6's blur */
+    float blur = tvar > 0.0f ? FOAM_BLUR_SHARE : 1.0f;
     for (int s = 0; s < k && s < r->nfs; s++) {
         const struct fs_slot *sl = &r->slot[s];
-        if (s >= kw)   /* ocean.frag: the detail's slots */
-            tvar += sl->top_slope[2] + sl->top_slope[3];
         float drop = r->d.fetch_all ? INFINITY : slot_drop_foot(r, s, DROP_FOOTPRINT, 1);
         int key_lev = (int)((key >> (4 * s)) & 15u);
         /* on x + y: the contrast of both */
@@ -2037,7 +2039,7 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
          * variance (the fade's), T the patch's; B and s per pixel (wc_trust_terms) */
         float w = within_at(sl->level_kvar, 1, wl, sl->top_level[1]);
         wmu[s][0] = sl->top_k[0];
-        wc_trust_terms(sl, wtr[s], &wmu[s][1]);
+        wc_trust_terms(sl, blur, wtr[s], &wmu[s][1]);
         wmu[s][2] = -w;
         wmu[s][3] = sl->top_k[1] - w;
     }
@@ -2046,9 +2048,7 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     glUniform4fv(u[OU_WC_LOD], SWELL_MAX_PATTERNS, &wc_lod[0][0]);
     glUniform4fv(u[OU_WC_MEAN], SWELL_MAX_PATTERNS, &wmu[0][0]);
     glUniform4fv(u[OU_WC_TRUST], SWELL_MAX_PATTERNS, &wtr[0][0]);
-    /* without slots finer than the foam's, no detail: c stays eq. 6's blur */
-    glUniform2f(u[OU_FOAM_DETAIL], tvar > 0.0f ? 1.0f / tvar : 0.0f,
-                tvar > 0.0f ? FOAM_BLUR_SHARE : 1.0f);
+    glUniform2f(u[OU_FOAM_DETAIL], tvar > 0.0f ? 1.0f / tvar : 0.0f, blur);
     glUniform2fv(u[OU_SLOPE_VAR], SWELL_MAX_PATTERNS, &svar[0][0]);
     glUniform2fv(u[OU_LOD_CMAX], SWELL_MAX_PATTERNS, &cmax[0][0]);
     glUniform2fv(u[OU_LOD_FRAME], 1, r->vf.lod_frame);

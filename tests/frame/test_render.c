@@ -1122,11 +1122,11 @@ static void test_resolved_drop(void **state)
  *   and its vertices carry the fragment patterns' foam memory at their footprint's mip level
  *   (grid.c k_moment_pass): low shows high's patches, softer at the spacing of the vertices,
  *   with eq. 6's Gaussian at coarser levels than high's pixels (more foam: in C, 1.1-1.3x the
- *   area of the thresholded field at 1-8 m footprints). Held at 7 %, measured 5.2-5.3 %.
+ *   area of the thresholded field at 1-8 m footprints). Held at 7 %, measured 6.0 %.
  *   Before high quality's foam took its trust in the fetched variance per pixel
- *   (ocean.frag add_whitecap): run LOD 7.2 %, per-pixel LOD 0.6 %, both wrong the same way
- *   there (level 0's bilinear mix of texels taken as variance: blocks and hazy patches on
- *   GPUs). */
+ *   (ocean.frag add_whitecap): run LOD 7.2 %, per-pixel LOD 0.6 %, where high's pixels took
+ *   level 0's bilinear mix of texels as variance as low's vertices did (hazy blocks on
+ *   GPUs, test_foam_lod_paths). */
 /* High quality's foam is one model on both LOD paths (issue 14 item 1): a 15 m/s baked sea,
  * gles2-min, from a boat (6 m, 35 deg down; 4 m, 25 deg down), every 8 rows' mean luminance
  * of the per-pixel path (what GPUs take) within 3 % of the run path's. Until add_whitecap
