@@ -53,11 +53,11 @@ uniform vec2 slope_var[4];          // per slot: the slope variance over its pat
                                     // level's mean within-texel variance, T - W, xy
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
 uniform vec4 wc_mean[4];            // per slot: the foam memory's mean over its patch; of its
-                                    // variance: c's scale, -W, T - W (add_whitecap)
-uniform vec2 foam_detail;           // 1 / the detail's slope variance x + y (main); the share
-                                    // of c kept as eq. 6's blur (add_whitecap)
-uniform vec4 wc_trust[4];           // per slot: B and c / c's scale at V_FOOT = 0, and their
-                                    // slopes per unit of it (add_whitecap)
+                                    // variance: c0, -W, T - W (add_whitecap)
+uniform vec2 foam_detail;           // 1 / the detail's slope variance x + y (main); the least
+                                    // share of c0 kept as eq. 6's blur (add_whitecap)
+uniform vec4 wc_trust[4];           // per slot: B and s at V_FOOT = 0, and their slopes per
+                                    // unit of it (add_whitecap)
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
 uniform float whitecap_epsilon;     // Dupuy eq. 3 threshold on j
 uniform vec4 wc_scale[4];

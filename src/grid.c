@@ -1191,17 +1191,6 @@ static inline void k_texel(struct grid_pattern *p, int lev, double x, double y,
     out[1] = maxf(q[1] - q[0] * q[0], 0.0f);
 }
 
-/* Add pattern f's whitecap moments alone to every vertex (grid.h k_patterns: low quality's
- * fragment-shader patterns, whose whitecaps no fragment shader fetches), as moment_pass does
- * for a CPU pattern, at the mip level of the vertex's footprint: Dupuy's eq. 6 then sees the
- * foam memory's first and second moments there, as high quality's fragment shader does per
- * pixel, where the patch's constants alone gave every vertex the same coverage. From
- * k_flat up it takes the top texel, unsampled. Its cost (callgrind, rough tables, gles2-min,
- * no lattice, grid_update + stream_blend a frame): surface 1.45 -> 2.54 M, 1 km 1.01 ->
- * 1.81 M, 10 km 0.81 -> 1.24 M, most of it the bilinear samples and their tiles' blends.
- * One level, as moment_pass: two blended by the footprint took 3.18 M (2.47 M with one) and
- * changed no row-to-row brightness step (storm from 5 m: the largest 8.0 % vs 8.4 %, the
- * foam's own patches). */
 /* The share of a level-0 variance a vertex keeps where the level is magnified (footprint r
  * texels, r < 1): the bilinear mix of neighbouring texels' moments is not variance within the
  * footprint, which goes to 0 with it. 1 from r = 1, 0 at r = 1/2, linear in r between (within
@@ -1213,6 +1202,17 @@ static inline float magnified_share(float r)
     return s < 0.0f ? 0.0f : s > 1.0f ? 1.0f : s;
 }
 
+/* Add pattern f's whitecap moments alone to every vertex (grid.h k_patterns: low quality's
+ * fragment-shader patterns, whose whitecaps no fragment shader fetches), as moment_pass does
+ * for a CPU pattern, at the mip level of the vertex's footprint: Dupuy's eq. 6 then sees the
+ * foam memory's first and second moments there, as high quality's fragment shader does per
+ * pixel, where the patch's constants alone gave every vertex the same coverage. From
+ * k_flat up it takes the top texel, unsampled. Its cost (callgrind, rough tables, gles2-min,
+ * no lattice, grid_update + stream_blend a frame): surface 1.45 -> 2.54 M, 1 km 1.01 ->
+ * 1.81 M, 10 km 0.81 -> 1.24 M, most of it the bilinear samples and their tiles' blends.
+ * One level, as moment_pass: two blended by the footprint took 3.18 M (2.47 M with one) and
+ * changed no row-to-row brightness step (storm from 5 m: the largest 8.0 % vs 8.4 %, the
+ * foam's own patches). */
 static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *verts)
 {
     struct grid_pattern *p = f->p;
