@@ -125,6 +125,7 @@ struct grid_pattern {
     int cpu, kcpu, levels;    /* kcpu: its whitecap moments alone per vertex (grid.h) */
     int k_flat;               /* kcpu: the first level whose texels' means hold less than
                                * K_FLAT of the foam memory's variance (k_flat_level) */
+    float k_w0;               /* kcpu: level 0's mean within-texel variance (magnified_var) */
 };
 
 /* One frame's constants of a CPU pattern for the moment pass: texel coordinates of moment level
@@ -527,6 +528,7 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
             }
             p->levels = p->wc->levels;
             p->k_flat = k_flat_level(p->wc);
+            p->k_w0 = table_level_within_var(p->wc, 0, 0, 1);
         }
         if ((rc = pattern_images(p, i, err)))
             goto fail;
@@ -1191,15 +1193,20 @@ static inline void k_texel(struct grid_pattern *p, int lev, double x, double y,
     out[1] = maxf(q[1] - q[0] * q[0], 0.0f);
 }
 
-/* The share of a level-0 variance a vertex keeps where the level is magnified (footprint r
- * texels, r < 1): the bilinear mix of neighbouring texels' moments is not variance within the
- * footprint, which goes to 0 with it. 1 from r = 1, 0 at r = 1/2, linear in r between (within
- * 0.09 of 1 + log2 r, ocean.frag add_whitecap's s line in the level). Not where level 0
- * is already the flat level (the patch's top texel, k_texel). */
-static inline float magnified_share(float r)
+/* A vertex's within-footprint variance of k-only pattern p's foam memory where level 0 is
+ * magnified (footprint r texels, r < 1) from the fetched <m^2> - <m>^2, v: there v is the
+ * bilinear mix of neighbouring texels' moments, not variance within the footprint (it draws
+ * the texel grid). As high quality's pixels take it (ocean.frag add_whitecap: B = 0 there, level
+ * 0's mean W0 instead, part of it as blur and the rest as detail of the same expected
+ * coverage), W0 in its place, from r = 1/2 down; v from r = 1, linear in r between. Taking
+ * v to 0 instead (W0 unused) matched high's rows as well but drew the vertices' triangles as
+ * a staircase along the foam's edges (storm from 5 m). Not where level 0 is already the flat
+ * level (the patch's top texel, k_texel). */
+static inline float magnified_var(const struct grid_pattern *p, float r, float v)
 {
     float s = 2.0f * r - 1.0f;
-    return s < 0.0f ? 0.0f : s > 1.0f ? 1.0f : s;
+    s = s < 0.0f ? 0.0f : s > 1.0f ? 1.0f : s;
+    return p->k_w0 + (v - p->k_w0) * s;
 }
 
 /* Add pattern f's whitecap moments alone to every vertex (grid.h k_patterns: low quality's
@@ -1232,7 +1239,7 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
                     f->my0[lev] + g->ry[k] * f->mk[lev], q_top, q);
             vx[GRID_A_K] += q[0];
             vx[GRID_A_K + 1] += lev || p->k_flat == 0 ? q[1]
-                                                      : q[1] * magnified_share(g->foot[k] * f->lev_k);
+                                                      : magnified_var(p, g->foot[k] * f->lev_k, q[1]);
         }
         return;
     }
@@ -1250,8 +1257,9 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
             kv += w * w * q[1];
         }
         vx[GRID_A_K] += km;
+        /* (the taps' weights: sum w_j^2 = 1, detile.h) */
         vx[GRID_A_K + 1] += lev || p->k_flat == 0 ? kv
-                                                  : kv * magnified_share(g->foot[k] * f->lev_k);
+                                                  : magnified_var(p, g->foot[k] * f->lev_k, kv);
     }
 }
 

@@ -205,7 +205,7 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
  * than a blend block. */
 /* k-only vertices checked, by lattice (off, on) and by whether they took the flat top texel */
 static int g_k_checked[2][2];
-static int g_k_magnified;   /* ...of them at a magnified level 0 (grid.c magnified_share) */
+static int g_k_magnified;   /* ...of them at a magnified level 0 (grid.c magnified_var) */
 static double g_alt = 6.0;  /* the camera's altitude, m */
 
 /* detile 0: grid_desc no_detile, the reference reads one tap at no offset; k_only: pattern 0
@@ -326,11 +326,13 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                     km += wj * (q[0] - k_mean);
                     kv += wj * wj * fmax(q[1] - q[0] * q[0], 0.0);
                 }
-                /* k-only, level 0 magnified (r texels per footprint under 1): the share 2 r - 1
-                 * of the bilinear mix's variance (grid.c magnified_share) */
+                /* k-only, level 0 magnified (r texels per footprint under 1): level 0's mean
+                 * within-texel variance W0 in place of the bilinear mix's, from r = 1/2 down,
+                 * linear in r up to 1 (grid.c magnified_var) */
                 double r0 = foot * wt->width / s.pattern[0].size_m;
                 if (k_only && klev == 0 && r0 < 1.0) {
-                    kv *= fmax(2.0 * r0 - 1.0, 0.0);
+                    double w0 = table_level_within_var(wt, 0, 0, 1);
+                    kv = w0 + (kv - w0) * fmax(2.0 * r0 - 1.0, 0.0);
                     g_k_magnified++;
                 }
                 double tol_s = 0.01 * st->scale[0] / 255.0, tol_w = 0.01 * wt->scale[0] / 255.0;
