@@ -1991,19 +1991,11 @@ static void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float
     float svar[SWELL_MAX_PATTERNS][2] = { { 0 } }, cmax[SWELL_MAX_PATTERNS][2] = { { 0 } };
     float wt_v[SWELL_MAX_PATTERNS][4] = { { 0 } }, wfrac[SLOT_LEVELS][4] = { { 0 } };
     float wtr[SWELL_MAX_PATTERNS][4] = { { 0 } }, tvar = 0.0f;
-    for (int s = kw; s < k && s < r->nfs; s++) {
-        /* ocean.frag main: the detail's slots, the variance of their means T - W at the level
-         * the run reads (its own, or per pixel that of its middle footprint): normalised by T
-         * alone, where the finer patterns' means hold less than T (their texels a fraction of
-         * a pixel), the detail drew less foam than the blur alone (rows 4 % darker next to the
-         * camera at 15 m/s) */
-        const struct fs_slot *sl = &r->slot[s];
-        int l = r->run_lod ? (int)((key >> (4 * s)) & 15u)
-                           : nearest_level(0.5f * (lf_near + lf_far), sl->log2_density[0]);
-        tvar += sl->top_slope[2] + sl->top_slope[3] -
-                within_at(&sl->level_var[0][0], 2, l, sl->top_level[0]) -
-                within_at(&sl->level_var[0][1], 2, l, sl->top_level[0]);
-    }
+    /* ocean.frag main: the detail's slots, their patches' variance T (T - W at the run's level,
+     * nearer the detail's own variance where their means hold less than T, changed the
+     * detail's amplitude from run to run: brightness steps of up to 8.7 % between runs) */
+    for (int s = kw; s < k && s < r->nfs; s++)
+        tvar += r->slot[s].top_slope[2] + r->slot[s].top_slope[3];
     /* without slots finer than the foam's, no detail: c0 stays eq. 6's blur */
     float blur = tvar > 0.0f ? FOAM_BLUR_SHARE : 1.0f;
     for (int s = 0; s < k && s < r->nfs; s++) {

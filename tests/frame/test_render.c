@@ -1125,7 +1125,7 @@ static void test_resolved_drop(void **state)
  *   equal expected coverage, partly covered pixels come out brighter through the concave
  *   tone map and gamma than whole foam and whole water side by side (inferred: with high's
  *   detail put back into eq. 6's blur, 4.5 %; with twice its amplitude, 9.8 %). Held at 10 %,
- *   measured 8.8-8.9 %. Low's vertices taking level 0's magnified variance to 0 (no blur)
+ *   measured 8.4-8.5 %. Low's vertices taking level 0's magnified variance to 0 (no blur)
  *   gave 6.0 % and drew their triangles as a staircase along the foam's edges (storm from
  *   5 m): the picture first.
  *   Before high quality's foam took its trust in the fetched variance per pixel
