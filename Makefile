@@ -26,7 +26,9 @@ CFLAGS ?= -g
 ALL_CFLAGS = $(WARN) $(OPT) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
 LDLIBS_ALL = $(PKG_LIBS) -lm -lpthread
 
-LIB_SRC := $(filter-out src/swell.c,$(wildcard src/*.c))
+# src/<layer>/<module>.c (docs/architecture.md); the two programs' mains are in src/app
+APP_MAIN := src/app/swell.c src/app/swell_bake.c
+LIB_SRC := $(filter-out $(APP_MAIN),$(wildcard src/*/*.c))
 LIB_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
 LIB := $(BUILD)/libswell.a
 
@@ -41,16 +43,12 @@ SWELL_BAKE := $(BUILD)/swell-bake
 
 .PHONY: all deps run test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden test-devices
 
-all: $(SWELL_BAKE) $(if $(wildcard src/swell.c),$(SWELL),)
+all: $(SWELL_BAKE) $(SWELL)
 
 deps:
 	@tools/install-deps.sh
 
 $(BUILD)/obj/%.o: src/%.c
-	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c $< -o $@
-
-$(BUILD)/tools/%.o: tools/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
@@ -67,10 +65,10 @@ $(LIB): $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-$(SWELL_BAKE): $(BUILD)/tools/swell-bake.o $(LIB)
+$(SWELL_BAKE): $(BUILD)/obj/app/swell_bake.o $(LIB)
 	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
 
-$(SWELL): $(BUILD)/obj/swell.o $(LIB)
+$(SWELL): $(BUILD)/obj/app/swell.o $(LIB)
 	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
 
 $(BUILD)/tests/%: $(BUILD)/tests/%.o $(LIB)
@@ -102,7 +100,7 @@ test-unit-O0:
 test-shaders:
 	@tools/validate-shaders.sh
 
-test-frame: $(FRAME_BIN) $(if $(wildcard src/swell.c),$(SWELL),)
+test-frame: $(FRAME_BIN) $(SWELL)
 	@tools/run-tests.sh frame $(BUILD) $(FRAME_BIN)
 
 # The shaders through the real GPUs' compilers: Mesa's lima, vc4, v3d, panfrost, freedreno and

@@ -1,4 +1,4 @@
-// bench_quad.frag - the benchmark baseline (src/bench.c): one trilinear texture fetch per pixel.
+// bench_quad.frag - the benchmark baseline (src/app/bench.c): one trilinear texture fetch per pixel.
 uniform sampler2D quad_tex;
 varying vec2 v_uv;
 

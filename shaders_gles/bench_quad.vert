@@ -1,4 +1,4 @@
-// bench_quad.vert - the benchmark baseline (src/bench.c): one fullscreen quad, the texture
+// bench_quad.vert - the benchmark baseline (src/app/bench.c): one fullscreen quad, the texture
 // repeated uv_scale times across the screen so its level of detail is fixed by the caller.
 attribute vec2 a_ndc;
 uniform vec2 uv_scale;              // texture repeats across the screen, per axis

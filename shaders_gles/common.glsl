@@ -124,7 +124,7 @@ float whitecap_cover(float eps, float mu, float kvar)
 // Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
 // Lambda(a) = (e^{-a^2} / (a sqrt(pi)) - erfc(a)) / 2, a = 1 / (sqrt(2) sigma tan theta), by the
 // rational fit of Walter et al. 2007 (eq. 27, the same Gaussian/Beckmann Lambda; relative error
-// below 0.35 % for the shadowing term 1 / (1 + Lambda)); src/ross.h is the C reference
+// below 0.35 % for the shadowing term 1 / (1 + Lambda)); src/optics/ross.h is the C reference
 // (test_glsl).
 // Two cosines at once (the view's and the sun's, one variance): vector arithmetic, 20 fewer
 // vertex instructions on Mali-400 than two calls.
@@ -147,7 +147,7 @@ float ross_lambda(float cos_t, float var)
 // irradiance (1, 0.39, 0.04) white) and none exceeds 1; one division instead of three. Then
 // gamma 2 (sqrt) as the sRGB transfer: within 0.03 of the sRGB curve above 0.1, and sqrt is
 // one instruction on GLES2 GPUs where pow() is exp2(log2()) per channel (4x slower on
-// llvmpipe, measured). src/tonemap.h is the C reference (test_glsl).
+// llvmpipe, measured). src/optics/tonemap.h is the C reference (test_glsl).
 vec3 tone_map(vec3 x)
 {
     // Clamped before the division: at the sun disc x can reach fp16's infinity, and inf / inf

@@ -2,7 +2,7 @@
 // validate: FS_PATTERNS=2 FS_WHITECAPS=1 CPU_VERTEX_TERMS | FS_PATTERNS=4 FS_WHITECAPS=2 CPU_VERTEX_TERMS | FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 SWELL_NO_DETILE
 // them and this stage evaluates the terms of the vertex alone (vterms.glsl vertex_terms), or,
 // where the driver refuses that (CPU_VERTEX_TERMS: Vivante GC2000's 256 instructions), the CPU
-// evaluates them too (src/vshade.c) and this stage only adds each run's constants; on the
+// evaluates them too (src/geometry/vshade.c) and this stage only adds each run's constants; on the
 // tiers with vertex texture fetch it builds and displaces the projected grid and evaluates
 // the terms itself. Positions are
 // camera-relative; texture coordinates are a per-pattern offset wrapped on the CPU in double
@@ -116,7 +116,7 @@ vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
 }
 #elif defined(CPU_VERTEX_TERMS)
 // gles2-min, the driver refusing the vertex shaders below: the CPU displaced the vertex and
-// evaluated every term of the vertex alone (src/vshade.h: vterms.glsl's functions, compared by
+// evaluated every term of the vertex alone (src/geometry/vshade.h: vterms.glsl's functions, compared by
 // test_vshade); this stage adds the run's constants.
 attribute vec4 a_pos;       // displaced, camera-relative, m; w: lod_foot
 attribute vec4 a_rest;      // rest position on the sea plane, camera-relative, m; the CPU

@@ -1,4 +1,4 @@
-// upscale.frag - render scale (src/upscale.h): the smaller frame, one bilinear fetch a pixel
+// upscale.frag - render scale (src/render/upscale.h): the smaller frame, one bilinear fetch a pixel
 // (clamped to its edges by the texture's wrap mode).
 uniform sampler2D frame_tex;
 varying vec2 v_uv;

@@ -1,4 +1,4 @@
-// upscale.vert - render scale (src/upscale.h): one triangle strip over the output.
+// upscale.vert - render scale (src/render/upscale.h): one triangle strip over the output.
 attribute vec2 a_ndc;
 varying vec2 v_uv;
 

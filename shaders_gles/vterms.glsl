@@ -1,4 +1,4 @@
-// vterms.glsl - the terms of a sea vertex alone, for ocean.vert; src/vshade.c evaluates the same
+// vterms.glsl - the terms of a sea vertex alone, for ocean.vert; src/geometry/vshade.c evaluates the same
 // on the CPU where a driver refuses the vertex shaders that do (CPU_VERTEX_TERMS; the uniforms
 // here are the fields of its struct vshade_frame), and test_glsl's test_vshade compares the two
 // on the GPU through tests/glsl/fn_vterms.vert. Needs common.glsl; QUALITY_HIGH takes the

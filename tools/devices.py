@@ -3,7 +3,7 @@
 
 Runs swell (surfaceless, one frame) under Mesa's own drivers for the target GPUs with their noop
 drm-shims (tools/mesa-shim.sh builds them), on every tier swell picks there and on forced
-gles2-min, in both qualities. swell's start-up probe (src/renderer.c probe_programs) draws every
+gles2-min, in both qualities. swell's start-up probe (src/render/renderer.c probe_programs) draws every
 ocean variant and the sky once, each between two labelled lines on stderr
 (SWELL_SHADER_LABELS=1), so the statistics each driver prints while compiling it (MESA_DEBUG=
 context and the driver's shaderdb switch) are told apart by program.
@@ -92,7 +92,7 @@ BOARDS = [
          note="4 vec4 shader cores (16 ALU lanes)", targets={}),
 ]
 SIZES = ("1280x720", "1920x1080")
-# render scales estimated (swell --scale, src/upscale.h): the frame drawn at scale x the output
+# render scales estimated (swell --scale, src/render/upscale.h): the frame drawn at scale x the output
 # and stretched over it; the devices' runs build the stretch at the last one
 SCALES = (1.0, 0.5)
 VIEWS = [("default", []), ("surface", ["--path", "surface"]), ("1km", ["--path", "1km"]),
@@ -560,7 +560,7 @@ def cost_doc(estimates):
              "a program the device refuses is replaced by the one swell draws its rows with "
              "there). Not modelled: texture and memory bandwidth, latency a single thread "
              "cannot hide (vc4 'threads 1'), the CPU's work (gles2-min: the grid and its "
-             "shading, src/vshade.c), the display. So these are upper bounds of the shading "
+             "shading, src/geometry/vshade.c), the display. So these are upper bounds of the shading "
              "alone, on clocks and lanes assumed from each board's published figures:", ""]
     seen = []
     for e in estimates:
@@ -572,7 +572,7 @@ def cost_doc(estimates):
     lines += ["", "Views: swell's default camera (10 m up, pitch -10°), and --path surface, 1km "
               "and 10km at t = 0. fps: the default view's, the slowest view's in brackets; "
               "target: issue 15 item 4, set for frames shaded at the output's size. Size: the "
-              "output's; at a render scale below 1 (swell --scale, src/upscale.h) the frame is "
+              "output's; at a render scale below 1 (swell --scale, src/render/upscale.h) the frame is "
               "shaded at the size in brackets and stretched over the output, the stretch's "
               "cost (the 'upscale' program over every output pixel) included: the trade "
               "offered where a target is missed, a blurrier picture for fewer pixels shaded.",

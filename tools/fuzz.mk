@@ -22,8 +22,8 @@ FUZZ_FLAGS ?=
 
 FUZZ_TARGETS := fuzz_ktx fuzz_manifest fuzz_preset
 # Only the loaders and what they call: the GL modules are not fuzzed, so they are not built.
-FUZZ_LIB_SRC := src/err.c src/fsutil.c src/ktx.c src/kv.c src/preset.c src/seastate.c \
-                src/tables.c src/tables_io.c
+FUZZ_LIB_SRC := $(addprefix src/core/,err.c fsutil.c kv.c preset.c seastate.c) \
+                $(addprefix src/tables/,ktx.c tables.c tables_io.c)
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Wno-unused-parameter -O1 -g \
                $(FUZZ_SAN) -Isrc -Itests/fuzz
@@ -70,9 +70,9 @@ fuzz: $(FUZZ_BIN)
 	exit $$status
 
 # tests/cli/test_bad_input.sh drives both programs, so the unit suite needs swell built too.
-test-unit: $(if $(wildcard src/swell.c),$(SWELL),)
+test-unit: $(SWELL)
 
-valgrind: $(SWELL_BAKE) $(if $(wildcard src/swell.c),$(SWELL),)
+valgrind: $(SWELL_BAKE) $(SWELL)
 	@tools/valgrind.sh $(BUILD)
 
 -include $(wildcard $(FUZZ_BUILD)/obj/*.d)

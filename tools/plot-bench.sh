@@ -9,7 +9,7 @@ png=$2
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/swell-plot.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
-# Camera altitude of each scripted path (src/camera.c camera_path_at), m.
+# Camera altitude of each scripted path (src/core/camera.c camera_path_at), m.
 jq -r '
   def alt: if . == "surface" then 5 elif . == "1km" then 1000 elif . == "10km" then 10000 else null end;
   [.scenes[] | select(.error == null and .ms_median != null and ((.detile // "on") == "on") == (.quality == "high"))] as $s |

@@ -1,7 +1,7 @@
 #!/bin/bash
 # validate-shaders.sh [DIR] - compile every DIR/*.vert and DIR/*.frag (default shaders_gles) with
-# glslangValidator as GLSL ES 1.00, once per tier and quality, with the header src/shader.c
-# prepends (keep the two in step: src/shader.h lists it) and includes inlined the same way
+# glslangValidator as GLSL ES 1.00, once per tier and quality, with the header src/gl/shader.c
+# prepends (keep the two in step: src/gl/shader.h lists it) and includes inlined the same way
 # (same directory, each file once, depth limit 8). Errors are mapped back to file:line through
 # the same #line encoding (line = file_index * 100000 + line). Prints
 # "shaders: N passed, N failed" and exits non-zero on any failure.
@@ -60,7 +60,7 @@ emit() {
 header() {
     local stage=$1 tier=$2 quality=$3
     if [ "$tier" = GLES3 ]; then
-        # GLSL ES 3.00 with the 1.00 names mapped (src/shader.c emit_header)
+        # GLSL ES 3.00 with the 1.00 names mapped (src/gl/shader.c emit_header)
         echo "#version 300 es"
         echo "#define texture2D texture"
         echo "#define texture2DLod textureLod"

@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "camera.h"
-#include "platform.h"
-#include "renderer.h"
+#include "core/camera.h"
+#include "platform/platform.h"
+#include "render/renderer.h"
 
 /* 0 when the surfaceless platform is open at w x h (GLES 3 context, tiers are forced lower),
  * else the exit status main() should return: 1 under CI=true, 77 (skip) elsewhere. */

@@ -13,12 +13,12 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "bake.h"
-#include "bench.h"
-#include "gpu.h"
-#include "platform.h"
-#include "renderer.h"
-#include "tables.h"
+#include "bake/bake.h"
+#include "app/bench.h"
+#include "gl/gpu.h"
+#include "platform/platform.h"
+#include "render/renderer.h"
+#include "tables/tables.h"
 
 #define W 160
 #define H 90

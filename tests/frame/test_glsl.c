@@ -17,18 +17,18 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
-#include "fresnel.h"
-#include "fsutil.h"
-#include "gpu.h"
-#include "platform.h"
-#include "ross.h"
-#include "shader.h"
-#include "sky.h"
-#include "tonemap.h"
-#include "vshade.h"
-#include "whitecap.h"
-#include "camera.h"
-#include "grid.h"
+#include "optics/fresnel.h"
+#include "core/fsutil.h"
+#include "gl/gpu.h"
+#include "platform/platform.h"
+#include "optics/ross.h"
+#include "gl/shader.h"
+#include "optics/sky.h"
+#include "optics/tonemap.h"
+#include "geometry/vshade.h"
+#include "bake/whitecap.h"
+#include "core/camera.h"
+#include "geometry/grid.h"
 #include "frame/frame_util.h"
 
 #define W 64

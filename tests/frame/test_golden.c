@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "image.h"
+#include "core/image.h"
 
 struct scene {
     const char *name;

@@ -18,10 +18,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "gpu.h"
-#include "platform.h"
-#include "shader.h"
-#include "tables.h"
+#include "gl/gpu.h"
+#include "platform/platform.h"
+#include "gl/shader.h"
+#include "tables/tables.h"
 
 #define W 96
 #define H 64

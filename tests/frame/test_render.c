@@ -16,17 +16,17 @@
 #include <string.h>
 #include <time.h>
 #include <cmocka.h>
-#include "bake.h"
-#include "gpu.h"
-#include "image.h"
-#include "platform.h"
-#include "quantize.h"
-#include "renderer.h"
-#include "ross.h"
-#include "seastate.h"
-#include "spectrum.h"
-#include "tonemap.h"
-#include "tables.h"
+#include "bake/bake.h"
+#include "gl/gpu.h"
+#include "core/image.h"
+#include "platform/platform.h"
+#include "tables/quantize.h"
+#include "render/renderer.h"
+#include "optics/ross.h"
+#include "core/seastate.h"
+#include "bake/spectrum.h"
+#include "optics/tonemap.h"
+#include "tables/tables.h"
 
 #define W 320
 #define H 180

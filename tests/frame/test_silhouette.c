@@ -27,14 +27,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
-#include "bake.h"
-#include "camera.h"
-#include "gpu.h"
-#include "platform.h"
-#include "preset.h"
-#include "renderer.h"
-#include "sea.h"
-#include "tables.h"
+#include "bake/bake.h"
+#include "core/camera.h"
+#include "gl/gpu.h"
+#include "platform/platform.h"
+#include "core/preset.h"
+#include "render/renderer.h"
+#include "geometry/sea.h"
+#include "tables/tables.h"
 #include "frame/frame_util.h"
 
 #define W 960

@@ -24,13 +24,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
-#include "bake.h"
-#include "gpu.h"
-#include "image.h"
-#include "platform.h"
-#include "preset.h"
-#include "renderer.h"
-#include "tables.h"
+#include "bake/bake.h"
+#include "gl/gpu.h"
+#include "core/image.h"
+#include "platform/platform.h"
+#include "core/preset.h"
+#include "render/renderer.h"
+#include "tables/tables.h"
 #include "frame/frame_util.h"
 
 #define W 384

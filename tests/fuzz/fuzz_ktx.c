@@ -1,4 +1,4 @@
-/* fuzz_ktx.c - libFuzzer target for ktx_read_memory (src/ktx.h: "safe on arbitrary input").
+/* fuzz_ktx.c - libFuzzer target for ktx_read_memory (src/tables/ktx.h: "safe on arbitrary input").
  *
  * Contracts checked beyond "no crash, no leak, no UB":
  *  - a refusal has a code and a message naming the file, and leaves *out zeroed;
@@ -8,9 +8,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "err.h"
-#include "ktx.h"
-#include "tables.h"
+#include "core/err.h"
+#include "tables/ktx.h"
+#include "tables/tables.h"
 #include "fuzz_common.h"
 
 #define FUZZ_KTX_NAME "fuzz.ktx"

@@ -1,4 +1,4 @@
-/* fuzz_manifest.c - libFuzzer target for manifest_read_memory (src/tables_io.h).
+/* fuzz_manifest.c - libFuzzer target for manifest_read_memory (src/tables/tables_io.h).
  *
  * Contracts checked beyond "no crash, no leak, no UB":
  *  - a refusal has a code and a message naming the file, and leaves *out zeroed;
@@ -8,9 +8,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "err.h"
-#include "tables.h"
-#include "tables_io.h"
+#include "core/err.h"
+#include "tables/tables.h"
+#include "tables/tables_io.h"
 #include "fuzz_common.h"
 
 #define FUZZ_MANIFEST_NAME "fuzz/manifest.swell"

@@ -1,4 +1,4 @@
-/* fuzz_preset.c - libFuzzer target for preset_parse_memory (src/preset.h).
+/* fuzz_preset.c - libFuzzer target for preset_parse_memory (src/core/preset.h).
  *
  * Contracts checked beyond "no crash, no leak, no UB":
  *  - a refusal has a code and a message naming the source, and leaves the state unchanged;
@@ -9,9 +9,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "err.h"
-#include "preset.h"
-#include "seastate.h"
+#include "core/err.h"
+#include "core/preset.h"
+#include "core/seastate.h"
 #include "fuzz_common.h"
 
 #define FUZZ_PRESET_NAME "fuzz.preset"

@@ -11,5 +11,5 @@ $(KMS_PROBE): tests/kms/kms_probe.c $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
 
-test-kms: $(KMS_PROBE) $(if $(wildcard src/swell.c),$(SWELL),)
+test-kms: $(KMS_PROBE) $(SWELL)
 	KMS_TIMEOUT=$(KMS_TIMEOUT) tests/kms/run-kms-test.sh $(BUILD)

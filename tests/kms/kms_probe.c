@@ -37,7 +37,7 @@
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
-#include "platform.h"
+#include "platform/platform.h"
 
 struct crtc_state {
     int valid;

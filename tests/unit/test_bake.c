@@ -10,10 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake.h"
-#include "ocean.h"
-#include "quantize.h"
-#include "whitecap.h"
+#include "bake/bake.h"
+#include "bake/ocean.h"
+#include "tables/quantize.h"
+#include "bake/whitecap.h"
 
 static struct seastate small_state(float wind)
 {

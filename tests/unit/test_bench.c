@@ -13,8 +13,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "bench.h"
-#include "fsutil.h"
+#include "app/bench.h"
+#include "core/fsutil.h"
 
 static uint32_t lcg(uint32_t *s)
 {

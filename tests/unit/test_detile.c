@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "detile.h"
+#include "geometry/detile.h"
 
 struct rng { uint64_t s; };
 

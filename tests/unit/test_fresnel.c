@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fresnel.h"
-#include "tables.h"
+#include "optics/fresnel.h"
+#include "tables/tables.h"
 
 /* ---- exact Fresnel ------------------------------------------------------------------------ */
 

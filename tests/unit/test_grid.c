@@ -12,10 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
-#include "grid.h"
-#include "quantize.h"
-#include "sky.h"
-#include "stream.h"
+#include "geometry/grid.h"
+#include "tables/quantize.h"
+#include "optics/sky.h"
+#include "tables/stream.h"
 
 #define N 16
 #define F 4

@@ -12,11 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
-#include "detile.h"
-#include "grid.h"
-#include "quantize.h"
-#include "sea.h"
-#include "stream.h"
+#include "geometry/detile.h"
+#include "geometry/grid.h"
+#include "tables/quantize.h"
+#include "geometry/sea.h"
+#include "tables/stream.h"
 
 #define F 4
 

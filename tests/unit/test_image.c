@@ -14,7 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "image.h"
+#include "core/image.h"
 
 static char dir[512];
 

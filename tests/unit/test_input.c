@@ -16,7 +16,7 @@
 #include <cmocka.h>
 #include <linux/input-event-codes.h>
 
-#include "input.h"
+#include "platform/input.h"
 
 #define PI 3.14159265358979323846
 

@@ -11,8 +11,8 @@
 
 #include <cmocka.h>
 
-#include "ktx.h"
-#include "tables.h"
+#include "tables/ktx.h"
+#include "tables/tables.h"
 
 #define NAME "test/slope_p1.ktx"
 

@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ocean.h"
-#include "spectrum.h"
+#include "bake/ocean.h"
+#include "bake/spectrum.h"
 
 #define TWO_PI 6.283185307179586
 

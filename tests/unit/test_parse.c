@@ -6,8 +6,8 @@
 #include <cmocka.h>
 #include <string.h>
 
-#include "parse.h"
-#include "seastate.h"
+#include "core/parse.h"
+#include "core/seastate.h"
 
 static void bad_double(const char *text)
 {

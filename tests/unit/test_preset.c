@@ -12,7 +12,7 @@
 
 #include <cmocka.h>
 
-#include "preset.h"
+#include "core/preset.h"
 
 #define SRC "x.preset"
 

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "quantize.h"
+#include "tables/quantize.h"
 
 static float frand(unsigned *s)
 {

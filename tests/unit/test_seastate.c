@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "seastate.h"
+#include "core/seastate.h"
 
 static void test_defaults(void **state)
 {

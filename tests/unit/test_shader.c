@@ -12,7 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "shader.h"
+#include "gl/shader.h"
 
 static char dir[512];
 

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <cmocka.h>
 
-#include "sky.h"
+#include "optics/sky.h"
 
 /* Every texel of level l holds A = SKY_LEVEL_ALPHA l, and A / 255 times the scale ocean.frag
  * gets (255 / SKY_LEVEL_ALPHA) gives l back; a trilinear blend of levels l and l + 1 with

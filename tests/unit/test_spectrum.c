@@ -7,7 +7,7 @@
 #include <cmocka.h>
 #include <math.h>
 
-#include "spectrum.h"
+#include "bake/spectrum.h"
 
 #define G SWELL_GRAVITY
 

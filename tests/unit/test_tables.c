@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tables.h"
+#include "tables/tables.h"
 
 static void set_geometry(struct swell_table *t, int w, int h, int layers, int levels, int fmt)
 {

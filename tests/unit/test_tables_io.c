@@ -13,8 +13,8 @@
 
 #include <cmocka.h>
 
-#include "fsutil.h"
-#include "tables_io.h"
+#include "core/fsutil.h"
+#include "tables/tables_io.h"
 
 static char scratch[1024];
 

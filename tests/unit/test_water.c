@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <cmocka.h>
-#include "water.h"
+#include "optics/water.h"
 
 /* R_rs above the surface, 1 / sr: R t / (n^2 Q) with water.h's t / n^2 and Q = pi */
 static double rrs(double r) { return 0.98 / 1.78 * r / M_PI; }

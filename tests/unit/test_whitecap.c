@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "seastate.h"
-#include "whitecap.h"
+#include "core/seastate.h"
+#include "bake/whitecap.h"
 
 /* A private generator so the samples do not depend on the C library's rand(). */
 struct rng { uint64_t s; };

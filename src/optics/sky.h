@@ -1,0 +1,88 @@
+/* sky.h - an analytic, sun-dependent clear sky, baked into the stereographic sky map of
+ * Bruneton 2010 §5.2 (u = 1/2 + 1/2 [r_x r_y] / (1 + r_z): zenith at the centre, horizon on the
+ * inscribed circle) with a full mip chain for the filtered lookup of eq. 27.
+ *
+ * Model (why: cheap, no tables, physically motivated): single scattering in a flat homogeneous
+ * atmosphere of Rayleigh optical depth tau_R = (0.046, 0.108, 0.265) (680/550/440 nm, 8 km scale
+ * height) and Mie optical depth 0.025 (extinction 1.1x, Henyey-Greenstein g = 0.76), air masses
+ * from Kasten & Young 1989. Looking at air mass m_v with the sun at air mass m_s, the radiance is
+ *     L = E0 (tau_R p_R(gamma) + tau_M p_M(gamma)) m_v (e^{-tau m_s} - e^{-tau m_v}) / (tau (m_v - m_s))
+ * (the closed form of the single-scattering integral through the slab), E0 = 1 extraterrestrial
+ * sun irradiance, so every radiance is relative to it. Multiple scattering is ignored.
+ * The sunlight reaches the air through the ozone layer (sky_ozone_transmittance: 300 DU, its
+ * Chappuis band absorbing green and red, optical depth (0.0098, 0.0282, 0.0013), in a thin
+ * shell 25 km up): what keeps the zenith blue at low sun, where the long path's Rayleigh
+ * extinction alone leaves the light that reaches it yellow and the zenith grey (at 3 degrees
+ * its green falls by 0.76, blue by 0.99). The view paths from below the layer skip it.
+ */
+#ifndef SWELL_SKY_H
+#define SWELL_SKY_H
+
+#include <stdint.h>
+#include "core/err.h"
+
+/* A of level l of the RGBA8 sky map (up to 9 levels, 256^2) */
+#define SKY_LEVEL_ALPHA 28
+
+struct sky {
+    float sun_dir[3];       /* unit vector towards the sun, world */
+    float sun_irr[3];       /* sun irradiance at the sea (normal incidence), relative to E0 */
+    float sky_irr[3];       /* sky irradiance on a horizontal surface, relative to E0 */
+    float map_scale;        /* texel value v / 255 * map_scale = radiance, per channel */
+    int size, levels;       /* sky map: size x size, full mip chain */
+    uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed; A holds
+                             * the level l as SKY_LEVEL_ALPHA * l: a fetch's A / 255 x
+                             * (255 / SKY_LEVEL_ALPHA) is the LOD it sampled (ocean.frag) */
+    uint16_t *half;         /* the same levels as IEEE half radiances (no scale): RGBA16F;
+                             * A as data's, A = SKY_LEVEL_ALPHA l / 255 */
+};
+
+/* Aerial perspective in the same model (ocean.vert): between the camera and a sea point the
+ * path's transmittance per channel is exp(-tau_ext m) with m its air mass, and it scatters in
+ * (1 - T) times the sky's radiance at the horizon in that azimuth, tau_r p_R(gamma) gain_r +
+ * tau_m p_M(gamma) gain_m (what sky_radiance gives at elevation 0: the path through the whole
+ * atmosphere towards the horizon). */
+struct sky_haze {
+    float tau_ext[3];       /* vertical optical depth, per channel */
+    float ray[3];           /* tau_R x the horizon gain: multiplies p_R(gamma) */
+    float mie[3];           /* tau_M x the horizon gain: multiplies p_M(gamma) */
+    float mie_g;            /* Henyey-Greenstein g */
+    float scale_height_m;   /* of the homogeneous slab's density, m */
+};
+void sky_haze(const struct sky *s, struct sky_haze *out);
+
+/* The sky seen from a camera alt_m above the sea (Bruneton 2010 §6: from the ground to
+ * space), for the background: the same single scattering with the view path's air mass
+ * replaced by the column of an exponential atmosphere on the sphere (scale height 8 km) along
+ * the ray from the camera, in units of the vertical column from the sea (numerically
+ * integrated; scaled so that at the sea it is Kasten & Young's air mass, so alt 0 gives
+ * sky_radiance exactly). Above the atmosphere the column vanishes: black space, and a glowing
+ * limb where the ray grazes the air. Directions below the horizon that miss the Earth (from
+ * high up) are included; those that hit it take the limb's.
+ *
+ * For n elevations with sin e_k = 2 (k + 1/2) / n - 1 (even in the direction's z, so the
+ * shader indexes by z without an asin; the steps in elevation are finest at the horizon and
+ * about as fine at orbit's limb): L(e, gamma) = ray[e] p_R(gamma) + mie[e] p_M(gamma) per
+ * channel (rgb triples), p_R and p_M the phase functions of sky_radiance (common.glsl
+ * horizon_sky evaluates them). */
+void sky_view_gains(const struct sky *s, double alt_m, int n, float *ray, float *mie);
+/* Air mass of the column from a camera alt_m up along elevation elev_rad (as sky_view_gains);
+ * the sun disc's transmittance is exp(-tau m). */
+float sky_view_air_mass(double alt_m, float elev_rad);
+/* The ozone layer's transmittance per channel for the sun at elevation elev_rad (clamped to
+ * 0): sky_radiance, the sea's sun irradiance and the sun disc take it. */
+void sky_ozone_transmittance(float elev_rad, float out[3]);
+/* exp(-tau_c m) per channel: the transmittance of air mass m (sky_view_air_mass). */
+void sky_transmittance(float m, float out[3]);
+
+/* Sky radiance towards unit direction dir (z up); below the horizon the horizon's. */
+void sky_radiance(const struct sky *s, const float dir[3], float rgb[3]);
+
+/* Bake for a sun at elev_deg (may be negative: no sun term then) / azim_deg (CCW from +x). */
+int  sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct swell_err *err);
+void sky_destroy(struct sky *s);
+
+/* Byte offset of a mip level in data. */
+size_t sky_level_offset(const struct sky *s, int level);
+
+#endif

@@ -1,0 +1,132 @@
+/* renderer.h - draws the ocean from baked tables into the bound framebuffer.
+ *
+ * Knows nothing of KMS or surfaceless (platform.h). Uploads and accounts every GL object
+ * through gpu.h; the frame loop allocates nothing. Paths chosen from gpu caps (tier), printed
+ * through renderer_describe().
+ */
+#ifndef SWELL_RENDERER_H
+#define SWELL_RENDERER_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "core/camera.h"
+#include "core/err.h"
+#include "gl/gpu.h"
+#include "tables/tables.h"
+
+enum render_quality { QUALITY_HIGH = 0, QUALITY_LOW, QUALITY_COUNT };
+enum geometry_kind { GEOMETRY_GRID = 0, GEOMETRY_PATCHES, GEOMETRY_COUNT };
+/* The lattice of random offsets that keeps each pattern from repeating on its tile (detile.h):
+ * AUTO is ON in high quality and OFF in low (Hu's single pass for the weakest GPUs, where the
+ * lattice would cost 2-3.5x the frame on llvmpipe; README), and OFF in high quality too where
+ * the driver refuses more of its programs with the lattice than without (renderer_create);
+ * OFF reads each pattern once, at no offset, so its tiles repeat. */
+enum detile_mode { DETILE_MODE_AUTO = 0, DETILE_MODE_ON, DETILE_MODE_OFF, DETILE_MODE_COUNT };
+
+struct renderer_desc {
+    const struct swell_tables *tables;  /* not owned; must outlive the renderer */
+    struct gpu *gpu;                    /* not owned; context current */
+    const char *shader_dir;             /* default "shaders_gles" */
+    int quality;                        /* enum render_quality. default HIGH */
+    int geometry;                       /* enum geometry_kind. default GRID */
+    int grid_w, grid_h;                 /* projected-grid vertices; default 0 = 96 x 64 */
+    float sun_elev_deg;                 /* sun elevation above the horizon; default 0 = 30 */
+    float sun_azim_deg;                 /* sun azimuth, CCW from +x; default 0 */
+    float exposure;                     /* tone-mapping exposure; default 0 = automatic */
+    int cpu_geometry;                   /* 1: displace on the CPU even where the tier has
+                                         * vertex texture fetch (tests compare the two) */
+    int fetch_all;                      /* 1: every row fetches every pattern (tests compare
+                                         * with the runs that drop fully filtered ones) */
+    int pixel_lod;                      /* 1: per-pixel texture LOD even where the device
+                                         * prefers one LOD per run (gpu.c prefer_run_lod;
+                                         * tests compare the two) */
+    int keep_resolved;                  /* 1: drop a pattern, its slopes and its whitecaps,
+                                         * only at its 1x1 level, not where its mip means are
+                                         * nearly flat or its whitecaps little more than its
+                                         * patch's (tests compare) */
+    int no_sky;                         /* 1: draw no sky, so the sea's silhouette meets the
+                                         * clear colour (tests: the horizon row) */
+    int no_sun;                         /* 1: the sea reflects no sun (eq. 15's term 0; the
+                                         * foam and the water body stay sunlit), so the
+                                         * difference from a frame with it is the glitter
+                                         * (tests: its width against Cox & Munk) */
+    unsigned probe_refuse;              /* tests: bit VARIANT(k, kw) = k * 5 + kw set: the
+                                         * start-up probe takes that ocean variant as refused
+                                         * by the driver (renderer.c probe_programs) */
+    unsigned probe_refuse_detile;       /* tests: the same for the programs built with the
+                                         * lattice of random offsets only (GC2000's case) */
+    unsigned probe_refuse_gpu_vertex;   /* tests: the same for those whose vertex shader
+                                         * evaluates the terms of the vertex (GC2000's) */
+    int cpu_vertex_terms;               /* 1: on gles2-min the terms of each vertex on the CPU
+                                         * (vshade.h) from the start; default 0: only where the
+                                         * driver refuses ocean.vert's (renderer_create) */
+    int detile;                         /* enum detile_mode (swell --detile); default AUTO.
+                                         * The CPU query (sea.h) takes renderer_detile's flag */
+    int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
+                                         * the sea, so a pixel neither covers shows (swell
+                                         * --debug uncovered, the frame tests); default 0: a
+                                         * dark sea colour */
+    int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
+                                         * naming the ocean program it is drawn with, no sky
+                                         * (white): the screen's share of each program
+                                         * (renderer_pixel_variant; swell --debug variants,
+                                         * tools/devices.py's cost model) */
+};
+
+/* A pixel of a debug_variants frame (RGBA8): the ocean program it was drawn with, as k * 5 + kw
+ * (k pattern and kw whitecap fetches, the probe's "ocean k=K kw=KW" names), or one of these. */
+enum { RENDERER_PIXEL_SKY = -1, RENDERER_PIXEL_MIXED = -2,
+       RENDERER_OCEAN_VARIANTS = (SWELL_MAX_PATTERNS + 1) * (SWELL_MAX_PATTERNS + 1) };
+int renderer_pixel_variant(const uint8_t rgba[4]);
+
+struct renderer_stats {
+    uint64_t gpu_bytes;                 /* accounted GPU bytes held by the renderer */
+    uint64_t cpu_bytes_per_frame;       /* bytes streamed to the GPU each frame */
+    int vertices, triangles;
+    int sea_draws;                      /* runs of rows drawn in the last frame (renderer.c) */
+    int sea_draws_wc_const;             /* ...of them, runs where a fetched slot's whitecaps
+                                         * entered as its patch's constants */
+    int sea_draws_resolved_drop;        /* ...of them, runs dropping a pattern whose mip means
+                                         * are nearly flat there, before its 1x1 level */
+    int run_lod;                        /* pattern tables fetched at one LOD per run */
+    int vtf;                            /* grid built and displaced in the vertex shader */
+    int detile;                         /* 1: the lattice of random offsets is on */
+    int cpu_vertex_terms;               /* gles2-min: the terms of each vertex on the CPU
+                                         * (vshade.h): the driver refused ocean.vert's */
+    int refused;                        /* ocean variants the start-up probe found refused
+                                         * (their rows drawn with fewer fetches) */
+    double camera_raise_m;              /* the last frame drew the camera this much higher, m:
+                                         * it was less than CAMERA_CLEARANCE_M above the local
+                                         * surface (renderer_frame) */
+};
+
+struct renderer;
+
+int  renderer_create(const struct renderer_desc *d, struct renderer **out, struct swell_err *err);
+/* Draw one frame at time t_s (s) into the framebuffer bound now, viewport width x height.
+ * A camera less than CAMERA_CLEARANCE_M above the sea surface under it (the displaced
+ * surface this frame draws) is drawn from that height above it instead. */
+int  renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
+                    int height, struct swell_err *err);
+/* Move the sun (degrees above the horizon in (0, 90], azimuth CCW from +x): re-bakes the sky
+ * map (about 11 M instructions at 256^2) and the automatic exposure; not for every frame. */
+int  renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err);
+void renderer_get_stats(const struct renderer *r, struct renderer_stats *out);
+/* 1 when the renderer reads the patterns through the lattice (desc detile resolved): the flag
+ * sea.h's query takes to give the surface this renderer draws. */
+int  renderer_detile(const struct renderer *r);
+/* Ocean program v's name (k * 5 + kw, renderer_pixel_variant): "ocean k=K kw=KW QUALITY",
+ * " no-detile" appended without the lattice; the start-up probe's labels, swell's shares. */
+void renderer_program_name(const struct renderer *r, int v, char *buf, size_t size);
+/* One line per choice made (tier, geometry path, texture path, shading) into buf. */
+void renderer_describe(const struct renderer *r, char *buf, size_t size);
+void renderer_destroy(struct renderer *r);
+
+const char *render_quality_name(int q);
+int render_quality_from_name(const char *name);
+const char *geometry_kind_name(int g);
+int geometry_kind_from_name(const char *name);
+const char *detile_mode_name(int m);
+int detile_mode_from_name(const char *name);
+
+#endif

@@ -1,0 +1,86 @@
+/* stream.c - loop-frame blending of RGBA8 tables (stream.h). */
+#include <math.h>
+#include <string.h>
+#include "tables/stream.h"
+
+void stream_loop_phase(double t_s, double period_s, int frames, struct stream_phase *out)
+{
+    double u = period_s > 0.0 ? fmod(t_s, period_s) / period_s : 0.0;
+    if (u < 0.0)
+        u += 1.0;
+    /* One integer phase for the whole loop so t and t + T land on the same value. */
+    long long q = (long long)floor(u * (double)frames * STREAM_W_ONE + 0.5);
+    long long total = (long long)frames * STREAM_W_ONE;
+    q %= total;
+    out->f0 = (int)(q / STREAM_W_ONE);
+    out->w = (int)(q % STREAM_W_ONE);
+    out->f1 = frames > 0 ? (out->f0 + 1) % frames : 0;
+}
+
+size_t stream_level_offset(const struct swell_table *t, int level)
+{
+    size_t off = 0;
+    for (int l = 0; l < level; l++)
+        off += table_level_bytes(t, l);
+    return off;
+}
+
+size_t stream_blended_bytes(const struct swell_table *t)
+{
+    return stream_level_offset(t, t->levels);
+}
+
+#define STREAM_BLOCK 16       /* bytes blended per vectorised block */
+
+/* 16 bytes of dst = a w0 + b w1, rounded: each 16-bit word holds two bytes, blended in place
+ * (the low byte shifted down, the high byte masked), so the products never leave 16 bits:
+ * a w0 + b w1 + 128 <= 255 * 256 + 128 < 2^16. A fixed block of restrict-qualified bytes is what
+ * -O2's very-cheap vectoriser accepts (no peeling, no runtime alias checks): one SSE2 or NEON
+ * vector per block, no intrinsics. The byte order of a word does not matter. */
+static inline void blend_block(uint8_t *restrict d, const uint8_t *restrict a,
+                               const uint8_t *restrict b, uint16_t w0, uint16_t w1)
+{
+    uint16_t x[STREAM_BLOCK / 2], y[STREAM_BLOCK / 2], z[STREAM_BLOCK / 2];
+    memcpy(x, a, STREAM_BLOCK);
+    memcpy(y, b, STREAM_BLOCK);
+    for (int k = 0; k < STREAM_BLOCK / 2; k++) {
+        uint16_t lo = (uint16_t)((x[k] & 0xffu) * w0 + (y[k] & 0xffu) * w1 + STREAM_W_ONE / 2);
+        uint16_t hi = (uint16_t)((x[k] >> 8) * w0 + (y[k] >> 8) * w1 + STREAM_W_ONE / 2);
+        z[k] = (uint16_t)((lo >> 8) | (hi & 0xff00u));
+    }
+    memcpy(d, z, STREAM_BLOCK);
+}
+
+/* d[i] = (a[i] w0 + b[i] w1 + 128) >> 8 for n bytes that do not overlap d (a may equal b). */
+static void stream_blend_bytes(uint8_t *restrict d, const uint8_t *restrict a,
+                               const uint8_t *restrict b, size_t n, int w)
+{
+    uint16_t w1 = (uint16_t)w, w0 = (uint16_t)(STREAM_W_ONE - w1);
+    size_t i = 0;
+    if (w1 == 0 || a == b) {
+        memcpy(d, a, n);
+        return;
+    }
+    /* four blocks per iteration: the loop overhead falls to 1.5 instructions per 64 bytes
+     * (about 1.3 instructions a byte on x86 in all) */
+    for (; i + 4 * STREAM_BLOCK <= n; i += 4 * STREAM_BLOCK) {
+        blend_block(d + i, a + i, b + i, w0, w1);
+        blend_block(d + i + STREAM_BLOCK, a + i + STREAM_BLOCK, b + i + STREAM_BLOCK, w0, w1);
+        blend_block(d + i + 2 * STREAM_BLOCK, a + i + 2 * STREAM_BLOCK, b + i + 2 * STREAM_BLOCK,
+                    w0, w1);
+        blend_block(d + i + 3 * STREAM_BLOCK, a + i + 3 * STREAM_BLOCK, b + i + 3 * STREAM_BLOCK,
+                    w0, w1);
+    }
+    for (; i + STREAM_BLOCK <= n; i += STREAM_BLOCK)
+        blend_block(d + i, a + i, b + i, w0, w1);
+    for (; i < n; i++)
+        d[i] = (uint8_t)((uint16_t)(a[i] * w0 + b[i] * w1 + STREAM_W_ONE / 2) >> 8);
+}
+
+void stream_blend(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst)
+{
+    int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0;
+    for (int l = 0; l < t->levels; l++)
+        stream_blend_bytes(dst + stream_level_offset(t, l), t->data + table_offset(t, l, f0),
+                           t->data + table_offset(t, l, f1), table_level_bytes(t, l), ph->w);
+}

@@ -1,0 +1,33 @@
+/* stream.h - loop-frame interpolation on the CPU (DESIGN.md gles2-min): every frame, layers f and
+ * f+1 of a looping RGBA8 table are blended into one image per table (all mip levels; the blend of
+ * the mips equals the mips of the blend because both are linear), which the renderer streams into
+ * a single texture and the geometry samples for the CPU-resolved patterns.
+ */
+#ifndef SWELL_STREAM_H
+#define SWELL_STREAM_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "tables/tables.h"
+
+/* Blend weight resolution: the weight between two loop frames is quantised to 1/STREAM_W_ONE so
+ * time t and t + T give bit-identical frames (the phase is an integer, see stream_loop_phase). */
+#define STREAM_W_ONE 256
+
+struct stream_phase {
+    int f0, f1;     /* loop frames blended: f1 = (f0 + 1) mod F */
+    int w;          /* weight of f1 in [0, STREAM_W_ONE) */
+};
+
+/* Phase in the loop of `frames` frames over period_s at time t_s (any sign, any size). */
+void stream_loop_phase(double t_s, double period_s, int frames, struct stream_phase *out);
+
+/* Bytes of one blended image of t (one layer, every level) and the offset of a level in it. */
+size_t stream_blended_bytes(const struct swell_table *t);
+size_t stream_level_offset(const struct swell_table *t, int level);
+
+/* dst = layer f0 + (layer f1 - layer f0) * w / STREAM_W_ONE, byte-wise, rounded to nearest, for
+ * every level of an RGBA8 table. */
+void stream_blend(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst);
+
+#endif
