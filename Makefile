@@ -11,6 +11,10 @@ SAN ?=
 BUILD ?= build/$(if $(SAN),san,rel)
 # where `make run` bakes the default tables
 TABLES_DIR ?= build/tables/default
+# where `make install` puts swell; the programs look for their data in $(PREFIX)/share/swell
+PREFIX ?= /usr/local
+# staging root for packagers: files go to $(DESTDIR)$(PREFIX)/...
+DESTDIR ?=
 # seconds per fuzz target for `make fuzz`
 FUZZ_SECONDS ?= 30
 # ---------------------------------------------------------------------------------------------
@@ -23,7 +27,7 @@ WARN := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Werror=implicit-function-
         -Wno-unused-parameter
 SANFLAGS := $(if $(SAN),-fsanitize=$(SAN) -fno-omit-frame-pointer -fno-sanitize-recover=all,)
 CFLAGS ?= -g
-ALL_CFLAGS = $(WARN) $(OPT) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
+ALL_CFLAGS = $(WARN) $(OPT) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -Isrc -I$(BUILD)/gen -MMD -MP
 LDLIBS_ALL = $(PKG_LIBS) -lm -lpthread
 
 # src/<layer>/<module>.c (docs/architecture.md); the two programs' mains are in src/app
@@ -41,7 +45,7 @@ FRAME_BIN := $(FRAME_SRC:tests/frame/%.c=$(BUILD)/tests/%)
 SWELL := $(BUILD)/swell
 SWELL_BAKE := $(BUILD)/swell-bake
 
-.PHONY: all deps run test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden test-devices
+.PHONY: all deps run install uninstall test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden test-devices
 
 all: $(SWELL_BAKE) $(SWELL)
 
@@ -60,6 +64,18 @@ $(BUILD)/tests/%.o: tests/frame/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -Itests -c $< -o $@
 
+# The data search order's directories (src/core/datadir.h), rewritten only when they change so
+# a new PREFIX rebuilds datadir.o and nothing else.
+DATADIR := $(PREFIX)/share/swell
+$(BUILD)/gen/datadir_paths.h: FORCE
+	@mkdir -p $(dir $@)
+	@printf '#define SWELL_INSTALL_DATADIR "%s"\n#define SWELL_SOURCE_DIR "%s"\n' \
+	    '$(DATADIR)' '$(CURDIR)' > $@.tmp
+	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
+$(BUILD)/obj/core/datadir.o: $(BUILD)/gen/datadir_paths.h
+.PHONY: FORCE
+FORCE:
+
 $(LIB): $(LIB_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@
@@ -74,6 +90,31 @@ $(SWELL): $(BUILD)/obj/app/swell.o $(LIB)
 $(BUILD)/tests/%: $(BUILD)/tests/%.o $(LIB)
 	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL) -lcmocka
 
+# ---- install: `make install PREFIX=/usr DESTDIR=/tmp/stage`; the programs find their data in
+# share/swell beside their bin/ (src/core/datadir.h), so a staged or moved tree works too.
+BINDIR = $(DESTDIR)$(PREFIX)/bin
+DATA_DEST = $(DESTDIR)$(PREFIX)/share/swell
+MAN1DIR = $(DESTDIR)$(PREFIX)/share/man/man1
+DOCDIR = $(DESTDIR)$(PREFIX)/share/doc/swell
+SHADER_FILES := $(wildcard shaders_gles/*.vert shaders_gles/*.frag shaders_gles/*.glsl)
+PRESET_FILES := $(wildcard tables/*.preset)
+MAN1 := docs/man/swell.1 docs/man/swell-bake.1
+INSTALLED = $(BINDIR)/swell $(BINDIR)/swell-bake $(SHADER_FILES:%=$(DATA_DEST)/%) \
+            $(PRESET_FILES:%=$(DATA_DEST)/%) $(MAN1:docs/man/%=$(MAN1DIR)/%) $(DOCDIR)/LICENSE
+
+install: all
+	install -d $(BINDIR) $(DATA_DEST)/shaders_gles $(DATA_DEST)/tables $(MAN1DIR) $(DOCDIR)
+	install -m 755 $(SWELL) $(SWELL_BAKE) $(BINDIR)/
+	install -m 644 $(SHADER_FILES) $(DATA_DEST)/shaders_gles/
+	install -m 644 $(PRESET_FILES) $(DATA_DEST)/tables/
+	install -m 644 $(MAN1) $(MAN1DIR)/
+	install -m 644 LICENSE $(DOCDIR)/
+
+# removes exactly what install put there, then the directories swell owns if they are empty
+uninstall:
+	rm -f $(INSTALLED)
+	-rmdir $(DATA_DEST)/shaders_gles $(DATA_DEST)/tables $(DATA_DEST) $(DOCDIR) 2>/dev/null
+
 # ---- the two commands ------------------------------------------------------------------------
 run: deps all
 	@tools/run.sh $(BUILD) $(TABLES_DIR)
@@ -81,8 +122,8 @@ run: deps all
 # With SAN= (e.g. `make test SAN=address,undefined`) the unit and frame suites run under the
 # sanitizers; the -O0 rebuild and the KMS VM (TCG-emulated, minutes even without ASan) belong to
 # the plain `make test`, which CI runs first.
-test: deps
-	@tools/install-deps.sh --kms
+test:
+	@tools/install-deps.sh --test --kms
 	$(MAKE) test-unit
 	$(if $(SAN),,$(MAKE) test-unit-O0)
 	$(MAKE) test-shaders

@@ -22,11 +22,11 @@ FUZZ_FLAGS ?=
 
 FUZZ_TARGETS := fuzz_ktx fuzz_manifest fuzz_preset
 # Only the loaders and what they call: the GL modules are not fuzzed, so they are not built.
-FUZZ_LIB_SRC := $(addprefix src/core/,err.c fsutil.c kv.c preset.c seastate.c) \
+FUZZ_LIB_SRC := $(addprefix src/core/,datadir.c err.c fsutil.c kv.c preset.c seastate.c) \
                 $(addprefix src/tables/,ktx.c tables.c tables_io.c)
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Wno-unused-parameter -O1 -g \
-               $(FUZZ_SAN) -Isrc -Itests/fuzz
+               $(FUZZ_SAN) -Isrc -I$(BUILD)/gen -Itests/fuzz
 FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:src/%.c=$(FUZZ_BUILD)/obj/%.o)
 FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/%)
 
@@ -36,6 +36,8 @@ FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/%)
 $(FUZZ_BUILD)/obj/%.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
+
+$(FUZZ_BUILD)/obj/core/datadir.o: $(BUILD)/gen/datadir_paths.h
 
 $(FUZZ_BUILD)/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h $(FUZZ_LIB_OBJ)
 	@mkdir -p $(dir $@)

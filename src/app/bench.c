@@ -294,7 +294,7 @@ int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell
         rc = swell_fail(err, SWELL_E_NOMEM, "bench: no memory for %d frame times", frames);
         goto done;
     }
-    rc = quad_create(&q, d->gpu->caps.tier, d->shader_dir ? d->shader_dir : "shaders_gles", err);
+    rc = quad_create(&q, d->gpu->caps.tier, d->shader_dir, err);
     if (rc)
         goto done;
 

@@ -57,7 +57,7 @@ struct bench_desc {
     struct gpu *gpu;                /* the renderer's accounting; not owned */
     struct upscale *upscale;        /* render scale (upscale.h): the scene drawn into its
                                        target and stretched; NULL = none. not owned */
-    const char *shader_dir;         /* baseline shaders; default "shaders_gles" */
+    const char *shader_dir;         /* baseline shaders; NULL: core/datadir.h */
     struct camera camera;           /* used when path is CAMERA_PATH_NONE */
     int path;                       /* enum camera_path */
     double time0_s;                 /* animation time of the first warm-up frame, s */

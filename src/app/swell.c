@@ -14,6 +14,7 @@
 
 #include "bake/bake.h"
 #include "app/bench.h"
+#include "core/datadir.h"
 #include "core/camera.h"
 #include "gl/gpu.h"
 #include "core/image.h"
@@ -73,7 +74,8 @@ static void usage(FILE *f)
 "                    out/frame%%04d.png (one %%d conversion)                        [none]\n"
 "Sea (tables):\n"
 "  --tables DIR      load baked tables from DIR (see swell-bake)\n"
-"  --preset NAME     bake in memory from tables/NAME.preset (or a .preset path); repeats\n"
+"  --preset NAME     bake in memory from NAME.preset in tables/ (Data, below) or a .preset\n"
+"                    path; repeats\n"
 "  --wind U          bake in memory with wind speed U10, m/s (0.5..40)               [10]\n"
 "  --budget B        GPU memory budget: tiny (4 MiB), default (16 MiB) or bytes (8M)\n"
 "                                                                [the tables' budget]\n"
@@ -99,7 +101,7 @@ static void usage(FILE *f)
 "  --scale S         render scale: the frame drawn at S x the output's size and\n"
 "                    stretched over it, bilinear (0.25..1; S^2 of the pixels shaded:\n"
 "                    for GPUs too slow to shade every pixel, docs/devices.md)         [1]\n"
-"KMS:\n"
+"KMS (fullscreen until Esc, q or Ctrl-C; the frame rate printed every 2 s):\n"
 "  --device PATH     DRM device such as /dev/dri/card0       [first with a display]\n"
 "  --connector NAME  connector such as HDMI-A-1 or Virtual-1    [first connected]\n"
 "  --mode WxH[@HZ]   display mode, exact else nearest                   [preferred]\n"
@@ -122,7 +124,8 @@ static void usage(FILE *f)
 "  --help            this text\n"
 "  --version         print the version\n"
 "\n"
-"Exit status: 0 success, 1 runtime failure, 2 usage error.\n");
+"Exit status: 0 success, 1 runtime failure, 2 usage error.\n\n");
+    data_dir_usage(f);
 }
 
 static int opt_value(int argc, char **argv, int *i, const char **v)
@@ -379,6 +382,27 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* On KMS the frame rate every FPS_REPORT_S of wall time, as kmscube does: frames presented
+ * over the time they took, and the mean time per frame. */
+#define FPS_REPORT_S 2.0
+struct fps_meter {
+    double t0;          /* start of the interval, s */
+    int frames;         /* presented in it */
+};
+
+static void fps_tick(struct fps_meter *m, double now)
+{
+    m->frames++;
+    double dt = now - m->t0;
+    if (dt < FPS_REPORT_S)
+        return;
+    printf("swell: %.1f fps (%.1f ms per frame) over %.1f s\n", m->frames / dt,
+           1e3 * dt / m->frames, dt);
+    fflush(stdout);
+    m->t0 = now;
+    m->frames = 0;
+}
+
 static int load_tables(struct options *o, struct swell_tables *t, struct swell_err *err)
 {
     if (o->tables_dir) {
@@ -460,6 +484,7 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
     int wall_clock = is_kms && o->fps <= 0;
     double step = 1.0 / (o->fps > 0 ? o->fps : DEFAULT_FPS);
     double start = now_s(), prev = start;
+    struct fps_meter fps = { start, 0 };
     struct camera live = o->camera;     /* moved by the keyboard when no --path is given */
     /* 0 means the renderer's default elevation (renderer.h) */
     float sun = o->sun_elev_deg > 0.0f ? o->sun_elev_deg : 30.0f;
@@ -501,6 +526,8 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
             rc = upscale_end(up, err);
         if (!rc)
             rc = ph->be->present(ph->p, err);
+        if (!rc && is_kms)
+            fps_tick(&fps, now_s());
         if (!rc && o->verbose) {
             struct renderer_stats st;
             renderer_get_stats(r, &st);

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "bake/bake.h"
+#include "core/datadir.h"
 #include "core/fsutil.h"
 #include "core/parse.h"
 #include "core/preset.h"
@@ -36,8 +37,8 @@ static void usage(FILE *f)
 "       swell-bake inspect DIR                 check and describe baked tables\n"
 "\n"
 "Sea state (every value has a unit; 0 or absent = the default shown):\n"
-"  --preset NAME|FILE.preset  load a preset from tables/ (calm, moderate, rough, storm; budgets\n"
-"                             tiny, default); may repeat; later options override it\n"
+"  --preset NAME|FILE.preset  load a preset (calm, moderate, rough, storm; budgets tiny,\n"
+"                             default; Data, below); may repeat; later options override it\n"
 "  --wind U          wind speed U10 at 10 m, m/s                      [10]   0.5..40\n"
 "  --wind-dir DEG    direction the wind blows towards, deg CCW from east [0] -360..360\n"
 "  --fetch KM        fetch, km (jonswap, tma)                          [100]  0.1..10000\n"
@@ -61,7 +62,8 @@ static void usage(FILE *f)
 "  --out DIR         directory for the KTX tables and manifest.swell (written atomically)\n"
 "  --report FILE     write statistics as JSON (hs_m, mss, whitecap threshold and fractions, bytes)\n"
 "  --quiet           no summary, no progress\n"
-"  --help, --version\n");
+"  --help, --version\n\n");
+    data_dir_usage(f);
 }
 
 static int opt_value(int argc, char **argv, int *i, const char **val)

@@ -1,6 +1,7 @@
 #include "core/preset.h"
 
 #include <dirent.h>
+#include <errno.h>
 #include <float.h>
 #include <inttypes.h>
 #include <stdint.h>
@@ -8,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/datadir.h"
 #include "core/fsutil.h"
 
 enum field_type { F_FLOAT, F_INT, F_U32, F_U64, F_SPECTRUM, F_WHITECAP };
@@ -174,12 +176,15 @@ int preset_parse_memory(const char *text, size_t len, const char *source, struct
     return rc;
 }
 
-static const char *data_dir_or_default(const char *data_dir)
+/* data_dir, or the presets' directory found by core/datadir.h into buf. */
+static int data_dir_or_default(const char *data_dir, char *buf, size_t cap, const char **dir,
+                               struct swell_err *err)
 {
+    *dir = data_dir;
     if (data_dir)
-        return data_dir;
-    const char *env = getenv(PRESET_ENV_DIR);
-    return env && env[0] ? env : PRESET_DEFAULT_DIR;
+        return 0;
+    *dir = buf;
+    return data_dir_find(DATADIR_PRESETS, buf, cap, err);
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -199,25 +204,28 @@ static int is_bare_name(const char *s)
 int preset_load_from(const char *name_or_path, const char *data_dir, struct seastate *s,
                      struct swell_err *err)
 {
-    char path[4096];
-    const char *dir = data_dir_or_default(data_dir);
+    char path[4096], found[4096];
+    const char *dir = data_dir;
     if (ends_with(name_or_path, PRESET_SUFFIX)) {
         snprintf(path, sizeof path, "%s", name_or_path);
     } else if (is_bare_name(name_or_path)) {
+        if (data_dir_or_default(data_dir, found, sizeof found, &dir, err))
+            return swell_err_context(err, "preset '%s'", name_or_path);
         int n = snprintf(path, sizeof path, "%s/%s" PRESET_SUFFIX, dir, name_or_path);
         if (n < 0 || (size_t)n >= sizeof path)
             return swell_fail(err, SWELL_E_ARG, "preset directory '%s' is too long", dir);
     } else {
         return swell_fail(err, SWELL_E_ARG, "preset '%s' is neither a name ([a-z0-9_-], looked "
-                          "up in %s/) nor a path ending in " PRESET_SUFFIX, name_or_path, dir);
+                          "up in swell's " DATADIR_PRESETS "/ directory) nor a path ending in "
+                          PRESET_SUFFIX, name_or_path);
     }
     uint8_t *buf = NULL;
     size_t len = 0;
     int rc = fs_read_file(path, PRESET_MAX_BYTES, &buf, &len, err);
     if (rc) {
         if (!ends_with(name_or_path, PRESET_SUFFIX))
-            swell_err_context(err, "preset '%s' (set %s or run from the source tree; "
-                              "`swell --help` lists presets)", name_or_path, PRESET_ENV_DIR);
+            swell_err_context(err, "preset '%s' (`swell --help` lists the presets in %s)",
+                              name_or_path, dir);
         return rc;
     }
     rc = preset_parse_memory((const char *)buf, len, path, s, err);
@@ -262,12 +270,15 @@ static void read_summary(const char *path, char *out, size_t cap)
 
 int preset_list(const char *data_dir, preset_list_fn fn, void *user, struct swell_err *err)
 {
-    const char *dir = data_dir_or_default(data_dir);
+    char found[4096];
+    const char *dir;
+    if (data_dir_or_default(data_dir, found, sizeof found, &dir, err))
+        return swell_err_context(err, "listing presets");
     struct dirent **list = NULL;
     int n = scandir(dir, &list, preset_filter, alphasort);
     if (n < 0)
-        return swell_fail(err, SWELL_E_IO, "cannot list presets in '%s'; set %s to the "
-                          "tables/ directory of the source tree", dir, PRESET_ENV_DIR);
+        return swell_fail(err, SWELL_E_IO, "cannot list presets in '%s': %s", dir,
+                          strerror(errno));
     for (int i = 0; i < n; i++) {
         char name[256], path[4096], summary[256];
         size_t m = strlen(list[i]->d_name) - strlen(PRESET_SUFFIX);
@@ -275,8 +286,11 @@ int preset_list(const char *data_dir, preset_list_fn fn, void *user, struct swel
             m = sizeof name - 1;
         memcpy(name, list[i]->d_name, m);
         name[m] = '\0';
-        snprintf(path, sizeof path, "%s/%s", dir, list[i]->d_name);
-        read_summary(path, summary, sizeof summary);
+        struct swell_err ignored;
+        if (fs_join(path, sizeof path, dir, list[i]->d_name, &ignored))
+            summary[0] = '\0';
+        else
+            read_summary(path, summary, sizeof summary);
         fn(user, name, summary);
         free(list[i]);
     }

@@ -16,15 +16,13 @@
 
 #define PRESET_SUFFIX ".preset"
 #define PRESET_MAX_BYTES 65536
-/* Environment variable naming the preset directory; default "tables" (relative to the cwd). */
-#define PRESET_ENV_DIR "SWELL_DATA_DIR"
-#define PRESET_DEFAULT_DIR "tables"
 
 /* name_or_path: a bare name ("rough", [a-z0-9_-]) is looked up as <data_dir>/<name>.preset,
- * data_dir = $SWELL_DATA_DIR or "tables"; anything ending in ".preset" is opened as a path.
+ * data_dir = swell's tables/ directory (core/datadir.h: $SWELL_DATA_DIR/tables, the source tree
+ * or $(PREFIX)/share/swell/tables); anything ending in ".preset" is opened as a path.
  * On failure *s is unchanged. */
 int preset_load(const char *name_or_path, struct seastate *s, struct swell_err *err);
-/* The same with an explicit directory (NULL = environment / default). */
+/* The same with an explicit directory (NULL = core/datadir.h's). */
 int preset_load_from(const char *name_or_path, const char *data_dir, struct seastate *s,
                      struct swell_err *err);
 /* Parse preset text; `source` names it in messages. On failure *s is unchanged. */

@@ -10,9 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/datadir.h"
 #include "core/fsutil.h"
 
-#define DEFAULT_DIR "shaders_gles"
 #define PRELUDE_NAME "<swell header>"
 #define MAX_NAME 128
 
@@ -34,6 +34,7 @@ static void sb_printf(struct membuf *b, const char *fmt, ...)
  * their index is the source-string number in `#line N F`. */
 struct assembly {
     const char *dir;
+    char dir_found[4096];     /* the shader directory found (core/datadir.h) when d->dir is NULL */
     struct membuf out;
     char files[SHADER_MAX_FILES][MAX_NAME];
     int nfiles;
@@ -326,7 +327,12 @@ static int assemble(const struct shader_desc *d, GLenum stage, struct assembly *
     if (!d->caps || !file || !valid_name(file, strlen(file)))
         return swell_fail(err, SWELL_E_ARG, "shader: the descriptor needs caps and plain file "
                           "names for both stages (got %s)", file ? file : "NULL");
-    a->dir = d->dir ? d->dir : DEFAULT_DIR;
+    a->dir = d->dir;
+    if (!a->dir) {
+        if (data_dir_find(DATADIR_SHADERS, a->dir_found, sizeof a->dir_found, err))
+            return swell_err_context(err, "shader: %s", file);
+        a->dir = a->dir_found;
+    }
     snprintf(a->files[0], MAX_NAME, "%s", PRELUDE_NAME);
     snprintf(a->files[1], MAX_NAME, "%s", file);
     a->nfiles = 2;
@@ -476,6 +482,16 @@ int shader_program_build(const struct shader_desc *d, struct shader_program *out
 {
     out->program = 0;
     GLuint vs = 0, fs = 0, prog = 0;
+    struct shader_desc found;
+    char dir[4096];
+    if (!d->dir) {      /* found once here, not once per stage (core/datadir.h) */
+        if (data_dir_find(DATADIR_SHADERS, dir, sizeof dir, err))
+            return swell_err_context(err, "shader: %s + %s", d->vs_file ? d->vs_file : "?",
+                                     d->fs_file ? d->fs_file : "?");
+        found = *d;
+        found.dir = dir;
+        d = &found;
+    }
     if (d->uniform_count < 0 || (d->uniform_count > 0 && (!d->uniform_names ||
                                                           !d->uniform_locations)) ||
         d->attrib_count < 0 || (d->attrib_count > 0 && !d->attribs))
@@ -508,7 +524,7 @@ int shader_program_build(const struct shader_desc *d, struct shader_program *out
     if (!ok) {
         char *log = gl_log(prog, 1);
         rc = swell_fail(err, SWELL_E_SHADER, "shader: linking %s/%s + %s (tier %s) failed: %s",
-                        d->dir ? d->dir : DEFAULT_DIR, d->vs_file, d->fs_file,
+                        d->dir, d->vs_file, d->fs_file,
                         gpu_tier_name(d->caps->tier), log && log[0] ? log : "(no log)");
         free(log);
         goto fail;

@@ -33,7 +33,7 @@ struct shader_attrib {
 };
 
 struct shader_desc {
-    const char *dir;                 /* default "shaders_gles" */
+    const char *dir;                 /* NULL: shaders_gles/ found by core/datadir.h */
     const char *vs_file, *fs_file;   /* names inside dir, e.g. "ocean.vert"; required */
     /* Caller defines: whitespace-separated "NAME" or "NAME=VALUE" (no spaces in VALUE), e.g.
      * "QUALITY_HIGH PATTERNS=4". NULL = none. */

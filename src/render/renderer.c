@@ -69,8 +69,6 @@ int renderer_detile(const struct renderer *r)
 
 static void resolve(struct renderer_desc *d)
 {
-    if (!d->shader_dir)
-        d->shader_dir = "shaders_gles";
     if (d->grid_w <= 0)
         d->grid_w = 80;
     if (d->grid_h <= 0)

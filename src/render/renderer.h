@@ -26,7 +26,7 @@ enum detile_mode { DETILE_MODE_AUTO = 0, DETILE_MODE_ON, DETILE_MODE_OFF, DETILE
 struct renderer_desc {
     const struct swell_tables *tables;  /* not owned; must outlive the renderer */
     struct gpu *gpu;                    /* not owned; context current */
-    const char *shader_dir;             /* default "shaders_gles" */
+    const char *shader_dir;             /* default NULL: found (core/datadir.h) */
     int quality;                        /* enum render_quality. default HIGH */
     int geometry;                       /* enum geometry_kind. default GRID */
     int grid_w, grid_h;                 /* projected-grid vertices; default 0 = 96 x 64 */

@@ -33,7 +33,7 @@ int upscale_side(int out, double scale);
 /* Builds the target and the stretch for an output of out_w x out_h at scale (UPSCALE_MIN..1),
  * and draws the stretch once (a driver that refuses it is said so here, not at a frame: its
  * stderr is scanned as the renderer's probe does, and where draws execute the result is read
- * back). depth_bits: the output's. shader_dir NULL: "shaders_gles". */
+ * back). depth_bits: the output's. shader_dir NULL: found (core/datadir.h). */
 int  upscale_create(struct upscale *u, struct gpu *g, int out_w, int out_h, double scale,
                     int depth_bits, const char *shader_dir, struct swell_err *err);
 /* Before the frame is drawn: keeps the bound framebuffer as the output and binds the target. */

@@ -12,14 +12,19 @@
 
 #include <cmocka.h>
 
+#include "core/datadir.h"
 #include "core/preset.h"
 
 #define SRC "x.preset"
 
+/* The shipped presets' directory, as swell finds it (core/datadir.h). */
 static const char *data_dir(void)
 {
-    const char *d = getenv(PRESET_ENV_DIR);
-    return d && d[0] ? d : PRESET_DEFAULT_DIR;
+    static char dir[4096];
+    struct swell_err e = { 0 };
+    if (!dir[0] && data_dir_find(DATADIR_PRESETS, dir, sizeof dir, &e))
+        fail_msg("%s", e.msg);
+    return dir;
 }
 
 /* Field by field: struct padding need not survive a struct copy. */
