@@ -76,7 +76,7 @@ static void usage(FILE *f)
 "  --tables DIR      load baked tables from DIR (see swell-bake)\n"
 "  --preset NAME     bake in memory from NAME.preset in tables/ (Data, below) or a .preset\n"
 "                    path; repeats\n"
-"  --wind U          bake in memory with wind speed U10, m/s (0.5..40)               [10]\n"
+"  --wind U          bake in memory with wind speed U10, m/s (%g..%g)               [10]\n"
 "  --budget B        GPU memory budget: tiny (4 MiB), default (16 MiB) or bytes (8M)\n"
 "                                                                [the tables' budget]\n"
 "                    (without --tables/--preset/--wind the default sea state is baked)\n"
@@ -124,7 +124,8 @@ static void usage(FILE *f)
 "  --help            this text\n"
 "  --version         print the version\n"
 "\n"
-"Exit status: 0 success, 1 runtime failure, 2 usage error.\n\n");
+"Exit status: 0 success, 1 runtime failure, 2 usage error.\n\n",
+            seastate_option("--wind")->lo, seastate_option("--wind")->hi);
     data_dir_usage(f);
 }
 
@@ -256,9 +257,11 @@ static int parse_args(int argc, char **argv, struct options *o)
             r = preset_load(v, &o->state, &err);
         } else if (!strcmp(a, "--wind")) {
             o->baking = 1;
-            r = parse_float(a, v, 0.5, 40, "m/s", &o->state.wind_speed_mps, &err);
+            r = seastate_set_option(&o->state, seastate_option(a), v, &err);
         } else if (!strcmp(a, "--budget")) {
-            r = parse_budget(a, v, &o->budget, &err);
+            struct seastate b = { 0 };
+            r = seastate_set_option(&b, seastate_option(a), v, &err);
+            o->budget = b.budget_bytes;
         } else if (!strcmp(a, "--sun")) {
             double s[2];
             r = parse_doubles(a, v, 2, -360, 360, s, &err);

@@ -39,24 +39,11 @@ static void usage(FILE *f)
 "Sea state (every value has a unit; 0 or absent = the default shown):\n"
 "  --preset NAME|FILE.preset  load a preset (calm, moderate, rough, storm; budgets tiny,\n"
 "                             default; Data, below); may repeat; later options override it\n"
-"  --wind U          wind speed U10 at 10 m, m/s                      [10]   0.5..40\n"
-"  --wind-dir DEG    direction the wind blows towards, deg CCW from east [0] -360..360\n"
-"  --fetch KM        fetch, km (jonswap, tma)                          [100]  0.1..10000\n"
-"  --depth M         water depth, m; 0 = deep water                    [0]    0 or 1..10000\n"
-"  --spectrum NAME   pm | jonswap | tma                                [jonswap]\n"
-"  --spread S        directional spreading exponent of cos^2s           [2]    1..100\n"
-"  --seed N          random seed                                       [1]\n"
-"  --choppiness L    choppy-wave lambda (Dupuy 2012 eq. 1)              [1]    0..2\n"
-"  --whitecap-model NAME  mom80 (3.84e-6 U^3.41) | wu88 (2.0e-6 U^3.75) [mom80]\n"
-"  --foam-half-life S  foam half-life, s (Tessendorf eq. 7-8, 13)      [3]    0.05..60\n"
-"\n"
-"Tables:\n"
-"  --patterns N      wave patterns of different periods (Dupuy 2012 §2) [4]   1..4\n"
-"  --period S        loop period T: every table repeats after T seconds [16]  2..600\n"
-"  --frames F        frames per loop                                   [by budget] 4..256\n"
-"  --size N          slope/whitecap table size, power of two           [by budget] 16..1024\n"
-"  --size-geo N      displacement table size, power of two             [by budget] 8..512\n"
-"  --budget B        GPU memory budget: tiny (4 MiB) | default (16 MiB) | bytes (8M, 1G)\n"
+"");
+    seastate_usage(f, 0);
+    fprintf(f, "\nTables:\n");
+    seastate_usage(f, 1);
+    fprintf(f,
 "\n"
 "Output:\n"
 "  --out DIR         directory for the KTX tables and manifest.swell (written atomically)\n"
@@ -73,21 +60,6 @@ static int opt_value(int argc, char **argv, int *i, const char **val)
         return -1;
     }
     *val = argv[++*i];
-    return 0;
-}
-
-/* Table sizes: checked here so the message names the option, not only the seastate field. */
-static int parse_pow2(const char *opt, const char *v, int lo, int hi, const char *field, int *out,
-                      struct swell_err *err)
-{
-    int n = 0;
-    int r = parse_int(opt, v, lo, hi, &n, err);
-    if (r)
-        return r;
-    if (n & (n - 1))
-        return swell_fail(err, SWELL_E_ARG, "%s: %s is not a power of two (%s: %d, %d, ... %d)",
-                          opt, v, field, lo, 2 * lo, hi);
-    *out = n;
     return 0;
 }
 
@@ -145,34 +117,7 @@ static int parse_args(int argc, char **argv, struct options *o)
         if (opt_value(argc, argv, &i, &v))
             return 2;
         if (!strcmp(a, "--preset")) r = preset_load(v, s, &err);
-        else if (!strcmp(a, "--wind")) r = parse_float(a, v, 0.5, 40, "m/s", &s->wind_speed_mps, &err);
-        else if (!strcmp(a, "--wind-dir")) r = parse_float(a, v, -360, 360, "deg", &s->wind_dir_deg, &err);
-        else if (!strcmp(a, "--fetch")) r = parse_float(a, v, 0.1, 10000, "km", &s->fetch_km, &err);
-        else if (!strcmp(a, "--depth")) {
-            r = parse_float(a, v, 0, 10000, "m", &s->depth_m, &err);
-            if (!r && s->depth_m > 0 && s->depth_m < 1)
-                r = swell_fail(&err, SWELL_E_ARG, "--depth: %s m is too shallow (0 = deep water, or 1..10000 m)", v);
-        } else if (!strcmp(a, "--spectrum")) {
-            s->spectrum = spectrum_from_name(v);
-            if (s->spectrum < 0)
-                r = swell_fail(&err, SWELL_E_ARG, "--spectrum: '%s' is not pm, jonswap or tma", v);
-        } else if (!strcmp(a, "--spread")) r = parse_float(a, v, 1, 100, "", &s->spread, &err);
-        else if (!strcmp(a, "--seed")) {
-            int seed;
-            r = parse_int(a, v, 1, 2147483647L, &seed, &err);
-            s->seed = (uint32_t)seed;
-        } else if (!strcmp(a, "--choppiness")) r = parse_float(a, v, 0, 2, "", &s->choppiness, &err);
-        else if (!strcmp(a, "--whitecap-model")) {
-            s->whitecap_model = whitecap_model_from_name(v);
-            if (s->whitecap_model < 0)
-                r = swell_fail(&err, SWELL_E_ARG, "--whitecap-model: '%s' is not mom80 or wu88", v);
-        } else if (!strcmp(a, "--foam-half-life")) r = parse_float(a, v, 0.05, 60, "s", &s->foam_half_life_s, &err);
-        else if (!strcmp(a, "--patterns")) r = parse_int(a, v, 1, SWELL_MAX_PATTERNS, &s->patterns, &err);
-        else if (!strcmp(a, "--period")) r = parse_float(a, v, 2, 600, "s", &s->loop_period_s, &err);
-        else if (!strcmp(a, "--frames")) r = parse_int(a, v, 4, 256, &s->frames, &err);
-        else if (!strcmp(a, "--size")) r = parse_pow2(a, v, 16, 1024, "size_fs", &s->size_fs, &err);
-        else if (!strcmp(a, "--size-geo")) r = parse_pow2(a, v, 8, 512, "size_geo", &s->size_geo, &err);
-        else if (!strcmp(a, "--budget")) r = parse_budget(a, v, &s->budget_bytes, &err);
+        else if (seastate_option(a)) r = seastate_set_option(s, seastate_option(a), v, &err);
         else if (!strcmp(a, "--out")) o->out_dir = v;
         else if (!strcmp(a, "--report")) o->report = v;
         else {

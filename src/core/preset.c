@@ -12,79 +12,50 @@
 #include "core/datadir.h"
 #include "core/fsutil.h"
 
-enum field_type { F_FLOAT, F_INT, F_U32, F_U64, F_SPECTRUM, F_WHITECAP };
-
-struct field {
-    const char *name;
-    int type;
-    size_t offset;
-};
-
-#define FIELD(n, t) { #n, t, offsetof(struct seastate, n) }
-
-/* Every member of struct seastate, in declaration order. */
-static const struct field fields[] = {
-    FIELD(wind_speed_mps, F_FLOAT),
-    FIELD(wind_dir_deg, F_FLOAT),
-    FIELD(fetch_km, F_FLOAT),
-    FIELD(depth_m, F_FLOAT),
-    FIELD(spectrum, F_SPECTRUM),
-    FIELD(spread, F_FLOAT),
-    FIELD(seed, F_U32),
-    FIELD(patterns, F_INT),
-    FIELD(loop_period_s, F_FLOAT),
-    FIELD(frames, F_INT),
-    FIELD(size_fs, F_INT),
-    FIELD(size_geo, F_INT),
-    FIELD(choppiness, F_FLOAT),
-    FIELD(whitecap_model, F_WHITECAP),
-    FIELD(foam_half_life_s, F_FLOAT),
-    FIELD(budget_bytes, F_U64),
-};
-
-#define FIELD_COUNT ((int)(sizeof fields / sizeof fields[0]))
-
+/* The presets' and the manifest's keys are the members of struct seastate by name, every one
+ * in declaration order (core/seastate.h seastate_fields). */
 int preset_format_state(const struct seastate *s, const char *prefix, char *buf, size_t cap,
                         size_t *len, struct swell_err *err)
 {
-    for (int i = 0; i < FIELD_COUNT; i++) {
-        const char *p = (const char *)s + fields[i].offset;
+    for (int i = 0; i < seastate_field_count; i++) {
+        const char *p = (const char *)s + seastate_fields[i].offset;
         char val[64];
-        switch (fields[i].type) {
-        case F_FLOAT: {
+        switch (seastate_fields[i].type) {
+        case SS_FLOAT: {
             float f;
             memcpy(&f, p, sizeof f);
             snprintf(val, sizeof val, "%.9g", (double)f);
             break;
         }
-        case F_INT: {
+        case SS_INT: {
             int v;
             memcpy(&v, p, sizeof v);
             snprintf(val, sizeof val, "%d", v);
             break;
         }
-        case F_U32: {
+        case SS_U32: {
             uint32_t v;
             memcpy(&v, p, sizeof v);
             snprintf(val, sizeof val, "%" PRIu32, v);
             break;
         }
-        case F_U64: {
+        case SS_U64: {
             uint64_t v;
             memcpy(&v, p, sizeof v);
             snprintf(val, sizeof val, "%" PRIu64, v);
             break;
         }
-        case F_SPECTRUM:
-        case F_WHITECAP: {
+        case SS_SPECTRUM:
+        case SS_WHITECAP: {
             int v;
             memcpy(&v, p, sizeof v);
-            snprintf(val, sizeof val, "%s", fields[i].type == F_SPECTRUM ?
+            snprintf(val, sizeof val, "%s", seastate_fields[i].type == SS_SPECTRUM ?
                      spectrum_name(v) : whitecap_model_name(v));
             break;
         }
         }
-        int n = snprintf(buf + *len, cap - *len, "%s%s = %s\n", prefix, fields[i].name, val);
+        int n = snprintf(buf + *len, cap - *len, "%s%s = %s\n", prefix, seastate_fields[i].key,
+                         val);
         if (n < 0 || (size_t)n >= cap - *len)
             return swell_fail(err, SWELL_E_ARG, "sea state text does not fit %zu bytes", cap);
         *len += (size_t)n;
@@ -92,12 +63,12 @@ int preset_format_state(const struct seastate *s, const char *prefix, char *buf,
     return 0;
 }
 
-static int apply_one(struct kv *kv, struct kv_entry *e, const struct field *f,
+static int apply_one(struct kv *kv, struct kv_entry *e, const struct seastate_field *f,
                      struct seastate *s, struct swell_err *err)
 {
     char *p = (char *)s + f->offset;
     switch (f->type) {
-    case F_FLOAT: {
+    case SS_FLOAT: {
         double d = 0;
         int rc = kv_entry_double(kv, e, -FLT_MAX, FLT_MAX, &d, err);
         if (rc)
@@ -106,20 +77,20 @@ static int apply_one(struct kv *kv, struct kv_entry *e, const struct field *f,
         memcpy(p, &v, sizeof v);
         return 0;
     }
-    case F_INT: {
+    case SS_INT: {
         int v = 0;
         int rc = kv_entry_int(kv, e, INT32_MIN, INT32_MAX, &v, err);
         if (rc == 0)
             memcpy(p, &v, sizeof v);
         return rc;
     }
-    case F_U32:
-    case F_U64: {
+    case SS_U32:
+    case SS_U64: {
         uint64_t v = 0;
-        int rc = kv_entry_u64(kv, e, 0, f->type == F_U32 ? UINT32_MAX : UINT64_MAX, &v, err);
+        int rc = kv_entry_u64(kv, e, 0, f->type == SS_U32 ? UINT32_MAX : UINT64_MAX, &v, err);
         if (rc)
             return rc;
-        if (f->type == F_U32) {
+        if (f->type == SS_U32) {
             uint32_t v32 = (uint32_t)v;
             memcpy(p, &v32, sizeof v32);
         } else {
@@ -128,7 +99,7 @@ static int apply_one(struct kv *kv, struct kv_entry *e, const struct field *f,
         return 0;
     }
     default: {
-        int spec = f->type == F_SPECTRUM;
+        int spec = f->type == SS_SPECTRUM;
         int v = spec ? spectrum_from_name(e->value) : whitecap_model_from_name(e->value);
         if (v < 0)
             return swell_fail(err, SWELL_E_FORMAT, "%s:%d: %s: '%s' is not one of %s",
@@ -143,16 +114,16 @@ static int apply_one(struct kv *kv, struct kv_entry *e, const struct field *f,
 int preset_apply_kv(struct kv *kv, const char *prefix, int require_all, struct seastate *s,
                     struct swell_err *err)
 {
-    for (int i = 0; i < FIELD_COUNT; i++) {
+    for (int i = 0; i < seastate_field_count; i++) {
         char key[96];
-        snprintf(key, sizeof key, "%s%s", prefix, fields[i].name);
+        snprintf(key, sizeof key, "%s%s", prefix, seastate_fields[i].key);
         struct kv_entry *e = kv_find(kv, key);
         if (!e) {
             if (require_all)
                 return swell_fail(err, SWELL_E_FORMAT, "%s: missing key '%s'", kv->source, key);
             continue;
         }
-        int rc = apply_one(kv, e, &fields[i], s, err);
+        int rc = apply_one(kv, e, &seastate_fields[i], s, err);
         if (rc)
             return rc;
     }

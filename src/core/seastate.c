@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <string.h>
+#include "core/parse.h"
 
 static const char *const spectrum_names[SPECTRUM_COUNT] = {
     [SPECTRUM_DEFAULT] = "default", [SPECTRUM_PM] = "pm",
@@ -32,55 +33,198 @@ void seastate_resolve(struct seastate *s)
     if (s->budget_bytes == 0) s->budget_bytes = SWELL_BUDGET_DEFAULT;
 }
 
-static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
+#define F(key, opt, arg, type, lo, hi, unit, flags, zero, help, dflt) \
+    { #key, opt, arg, type, offsetof(struct seastate, key), lo, hi, unit, flags, zero, help, dflt }
+const struct seastate_field seastate_fields[] = {
+    F(wind_speed_mps, "--wind", "U", SS_FLOAT, 0.5, 40, "m/s", 0, NULL,
+      "wind speed U10 at 10 m, m/s", "10"),
+    F(wind_dir_deg, "--wind-dir", "DEG", SS_FLOAT, -360, 360, "deg", 0, NULL,
+      "direction the wind blows towards, deg CCW from east", "0"),
+    F(fetch_km, "--fetch", "KM", SS_FLOAT, 0.1, 10000, "km", 0, NULL,
+      "fetch, km (jonswap, tma)", "100"),
+    F(depth_m, "--depth", "M", SS_FLOAT, 1, 10000, "m", SS_ZERO_OK | SS_OPTION_ZERO,
+      "deep water", "water depth, m; 0 = deep water", "0"),
+    F(spectrum, "--spectrum", "NAME", SS_SPECTRUM, 0, 0, "", 0, NULL,
+      "pm | jonswap | tma", "jonswap"),
+    F(spread, "--spread", "S", SS_FLOAT, 1, 100, "", 0, NULL,
+      "directional spreading exponent of cos^2s", "2"),
+    /* any seed is valid; the option takes 1..2^31 - 1 */
+    F(seed, "--seed", "N", SS_U32, 1, 2147483647, "", 0, NULL, "random seed", "1"),
+    F(patterns, "--patterns", "N", SS_INT, 1, SWELL_MAX_PATTERNS, "", SS_TABLES, NULL,
+      "wave patterns of different periods (Dupuy 2012 §2)", "4"),
+    F(loop_period_s, "--period", "S", SS_FLOAT, 2, 600, "s", SS_TABLES, NULL,
+      "loop period T: every table repeats after T seconds", "16"),
+    /* F frames carry harmonics up to F/2 - 1 of a pattern's loop (bake.c pattern_period, Hu
+     * 2006 §2.1): F = 2 or 3 carries none and would bake a flat sea, so F starts at 4. */
+    F(frames, "--frames", "F", SS_INT, 4, 256, "", SS_ZERO_OK | SS_TABLES, "by budget",
+      "frames per loop", "by budget"),
+    F(size_fs, "--size", "N", SS_INT, 16, 1024, "", SS_ZERO_OK | SS_POW2 | SS_TABLES,
+      "by budget", "slope/whitecap table size, power of two", "by budget"),
+    F(size_geo, "--size-geo", "N", SS_INT, 8, 512, "", SS_ZERO_OK | SS_POW2 | SS_TABLES,
+      "by budget", "displacement table size, power of two", "by budget"),
+    F(choppiness, "--choppiness", "L", SS_FLOAT, 0, 2, "", 0, NULL,
+      "choppy-wave lambda (Dupuy 2012 eq. 1)", "1"),
+    F(whitecap_model, "--whitecap-model", "NAME", SS_WHITECAP, 0, 0, "", 0, NULL,
+      "mom80 (3.84e-6 U^3.41) | wu88 (2.0e-6 U^3.75)", "mom80"),
+    F(foam_half_life_s, "--foam-half-life", "S", SS_FLOAT, 0.05, 60, "s", 0, NULL,
+      "foam half-life, s (Tessendorf eq. 7-8, 13)", "3"),
+    F(budget_bytes, "--budget", "B", SS_U64, 1 << 20, 1 << 30, "bytes", SS_TABLES, NULL,
+      "GPU memory budget: tiny (4 MiB) | default (16 MiB) | bytes", "16M"),
+};
+#undef F
+const int seastate_field_count = (int)(sizeof seastate_fields / sizeof seastate_fields[0]);
 
-/* One range check: NaN fails every comparison, so test for being inside. */
-static int check_range(const char *field, const char *unit, double v, double lo, double hi,
+static int is_pow2(long v) { return v > 0 && (v & (v - 1)) == 0; }
+
+static double field_value(const struct seastate *s, const struct seastate_field *f)
+{
+    const char *p = (const char *)s + f->offset;
+    float fl;
+    int i;
+    uint32_t u;
+    uint64_t u64;
+    switch (f->type) {
+    case SS_FLOAT: memcpy(&fl, p, sizeof fl); return fl;
+    case SS_U32: memcpy(&u, p, sizeof u); return u;
+    case SS_U64: memcpy(&u64, p, sizeof u64); return (double)u64;
+    default: memcpy(&i, p, sizeof i); return i;
+    }
+}
+
+static const char *enum_list(int type)
+{
+    return type == SS_SPECTRUM ? "pm, jonswap, tma" : "mom80, wu88";
+}
+
+/* The first problem with one field, naming it, its value and what is allowed. NaN fails every
+ * comparison, so the test is for being inside. */
+static int check_field(const struct seastate *s, const struct seastate_field *f,
                        struct swell_err *err)
 {
-    if (v >= lo && v <= hi)
+    double v = field_value(s, f);
+    if (f->type == SS_U32)
         return 0;
+    if (f->type == SS_SPECTRUM || f->type == SS_WHITECAP) {
+        int count = f->type == SS_SPECTRUM ? SPECTRUM_COUNT : WHITECAP_COUNT;
+        if (v > 0 && v < count)
+            return 0;
+        return swell_fail(err, SWELL_E_ARG, "%s = %d is not one of %s", f->key, (int)v,
+                          enum_list(f->type));
+    }
+    if ((f->flags & SS_ZERO_OK) && v == 0)
+        return 0;
+    if (f->type == SS_U64) {
+        if (v >= f->lo && v <= f->hi)
+            return 0;
+        return swell_fail(err, SWELL_E_ARG, "%s = %.0f is out of range: allowed [%.0f MiB, "
+                          "%.0f GiB]", f->key, v, f->lo / (1 << 20), f->hi / (1 << 30));
+    }
+    if (f->flags & SS_POW2) {
+        if (v >= f->lo && v <= f->hi && is_pow2((long)v))
+            return 0;
+        return swell_fail(err, SWELL_E_ARG, "%s = %d must be a power of two in [%g, %g] (or "
+                          "0 = %s)", f->key, (int)v, f->lo, f->hi, f->zero_means);
+    }
+    if (v >= f->lo && v <= f->hi)
+        return 0;
+    if (f->flags & SS_ZERO_OK)
+        return swell_fail(err, SWELL_E_ARG, "%s = %g %s is out of range: allowed [%g, %g] %s, "
+                          "or 0 = %s", f->key, v, f->unit, f->lo, f->hi, f->unit, f->zero_means);
     return swell_fail(err, SWELL_E_ARG, "%s = %g %s is out of range: allowed [%g, %g] %s",
-                      field, v, unit, lo, hi, unit);
+                      f->key, v, f->unit, f->lo, f->hi, f->unit);
 }
 
 int seastate_validate(const struct seastate *s, struct swell_err *err)
 {
-    int r;
-    if ((r = check_range("wind_speed_mps", "m/s", s->wind_speed_mps, 0.5, 40.0, err))) return r;
-    if ((r = check_range("wind_dir_deg", "deg", s->wind_dir_deg, -360.0, 360.0, err))) return r;
-    if ((r = check_range("fetch_km", "km", s->fetch_km, 0.1, 10000.0, err))) return r;
-    if (s->depth_m != 0.0f &&
-        (r = check_range("depth_m", "m (0 = deep water)", s->depth_m, 1.0, 10000.0, err)))
-        return r;
-    if (s->spectrum <= SPECTRUM_DEFAULT || s->spectrum >= SPECTRUM_COUNT)
-        return swell_fail(err, SWELL_E_ARG, "spectrum = %d is not one of pm, jonswap, tma",
-                          s->spectrum);
-    if ((r = check_range("spread", "", s->spread, 1.0, 100.0, err))) return r;
-    if ((r = check_range("patterns", "", s->patterns, 1, 4, err))) return r;
-    if ((r = check_range("loop_period_s", "s", s->loop_period_s, 2.0, 600.0, err))) return r;
-    /* F frames carry harmonics up to F/2 - 1 of a pattern's loop (bake.c pattern_period, Hu
-     * 2006 §2.1): F = 2 or 3 carries none and would bake a flat sea, so F starts at 4. */
-    if (s->frames != 0 && (r = check_range("frames", "", s->frames, 4, 256, err))) return r;
-    if (s->size_fs != 0 && (!is_pow2(s->size_fs) || s->size_fs < 16 || s->size_fs > 1024))
-        return swell_fail(err, SWELL_E_ARG,
-                          "size_fs = %d must be a power of two in [16, 1024] (or 0 = by budget)",
-                          s->size_fs);
-    if (s->size_geo != 0 && (!is_pow2(s->size_geo) || s->size_geo < 8 || s->size_geo > 512))
-        return swell_fail(err, SWELL_E_ARG,
-                          "size_geo = %d must be a power of two in [8, 512] (or 0 = by budget)",
-                          s->size_geo);
-    if ((r = check_range("choppiness", "", s->choppiness, 0.0, 2.0, err))) return r;
-    if (s->whitecap_model <= WHITECAP_DEFAULT || s->whitecap_model >= WHITECAP_COUNT)
-        return swell_fail(err, SWELL_E_ARG, "whitecap_model = %d is not one of mom80, wu88",
-                          s->whitecap_model);
-    if ((r = check_range("foam_half_life_s", "s", s->foam_half_life_s, 0.05, 60.0, err)))
-        return r;
-    if (s->budget_bytes < (1u << 20) || s->budget_bytes > (1ull << 30))
-        return swell_fail(err, SWELL_E_ARG,
-                          "budget_bytes = %llu is out of range: allowed [1 MiB, 1 GiB]",
-                          (unsigned long long)s->budget_bytes);
+    for (int i = 0; i < seastate_field_count; i++) {
+        int r = check_field(s, &seastate_fields[i], err);
+        if (r)
+            return r;
+    }
     return 0;
+}
+
+const struct seastate_field *seastate_option(const char *option)
+{
+    for (int i = 0; option && i < seastate_field_count; i++)
+        if (strcmp(seastate_fields[i].option, option) == 0)
+            return &seastate_fields[i];
+    return NULL;
+}
+
+int seastate_set_option(struct seastate *s, const struct seastate_field *f, const char *text,
+                        struct swell_err *err)
+{
+    const char *opt = f->option;
+    char *p = (char *)s + f->offset;
+    int r = 0;
+    switch (f->type) {
+    case SS_FLOAT: {
+        float v;
+        double lo = (f->flags & SS_OPTION_ZERO) ? 0.0 : f->lo;
+        if ((r = parse_float(opt, text, lo, f->hi, f->unit, &v, err)))
+            return r;
+        if (v != 0.0f && v < f->lo)
+            return swell_fail(err, SWELL_E_ARG, "%s: %s %s is too small (0 = %s, or %g..%g %s)",
+                              opt, text, f->unit, f->zero_means, f->lo, f->hi, f->unit);
+        memcpy(p, &v, sizeof v);
+        return 0;
+    }
+    case SS_INT:
+    case SS_U32: {
+        int v;
+        if ((r = parse_int(opt, text, (long)f->lo, (long)f->hi, &v, err)))
+            return r;
+        if ((f->flags & SS_POW2) && !is_pow2(v))
+            return swell_fail(err, SWELL_E_ARG, "%s: %s is not a power of two (%s: %g, %g, ... "
+                              "%g)", opt, text, f->key, f->lo, 2 * f->lo, f->hi);
+        if (f->type == SS_U32) {
+            uint32_t u = (uint32_t)v;
+            memcpy(p, &u, sizeof u);
+        } else {
+            memcpy(p, &v, sizeof v);
+        }
+        return 0;
+    }
+    case SS_U64: {
+        uint64_t v;
+        if ((r = parse_budget(opt, text, &v, err)))
+            return r;
+        memcpy(p, &v, sizeof v);
+        return 0;
+    }
+    default: {
+        int v = f->type == SS_SPECTRUM ? spectrum_from_name(text) : whitecap_model_from_name(text);
+        if (v < 0)
+            return swell_fail(err, SWELL_E_ARG, "%s: '%s' is not one of %s", opt, text,
+                              enum_list(f->type));
+        memcpy(p, &v, sizeof v);
+        return 0;
+    }
+    }
+}
+
+void seastate_usage(FILE *out, int tables)
+{
+    for (int i = 0; i < seastate_field_count; i++) {
+        const struct seastate_field *f = &seastate_fields[i];
+        if (!(f->flags & SS_TABLES) != !tables)
+            continue;
+        char head[40], range[48] = "";
+        snprintf(head, sizeof head, "%s %s", f->option, f->arg);
+        if (f->type == SS_FLOAT || f->type == SS_INT)
+            snprintf(range, sizeof range, "%s%g..%g", (f->flags & SS_OPTION_ZERO) ? "0 or " : "",
+                     f->lo, f->hi);
+        char dflt[16], line[256];
+        snprintf(dflt, sizeof dflt, "[%s]", f->dflt);
+        int over = (int)strlen(head) - 17;    /* a long head pushes the help, not the rest */
+        snprintf(line, sizeof line, "  %-17s %-*s %-11s %s", head, 50 - (over > 0 ? over : 0),
+                 f->help, dflt, range);
+        size_t n = strlen(line);
+        while (n > 0 && line[n - 1] == ' ')
+            line[--n] = '\0';
+        fprintf(out, "%s\n", line);
+    }
 }
 
 static int name_lookup(const char *const *names, int count, const char *name)

@@ -18,7 +18,6 @@
 #include "core/err.h"
 #include "core/seastate.h"
 
-#define SWELL_MAX_PATTERNS 4
 #define SWELL_MAX_TABLES   32
 
 enum table_kind {
