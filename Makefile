@@ -56,6 +56,15 @@ $(BUILD)/obj/%.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
+$(BUILD)/tools/%.o: tools/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+# the library's shader assembler for tools/validate-shaders.sh
+SHADER_SOURCE := $(BUILD)/tools/shader-source
+$(SHADER_SOURCE): $(BUILD)/tools/shader_source.o $(LIB)
+	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+
 $(BUILD)/tests/%.o: tests/unit/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -Itests -c $< -o $@
@@ -138,8 +147,8 @@ test-unit: $(UNIT_BIN) $(SWELL_BAKE)
 test-unit-O0:
 	$(MAKE) OPT=-O0 BUILD=$(BUILD)-O0 test-unit
 
-test-shaders:
-	@tools/validate-shaders.sh
+test-shaders: $(SHADER_SOURCE)
+	@SWELL_SHADER_SOURCE=$(SHADER_SOURCE) tools/validate-shaders.sh
 
 test-frame: $(FRAME_BIN) $(SWELL)
 	@tools/run-tests.sh frame $(BUILD) $(FRAME_BIN)

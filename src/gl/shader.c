@@ -416,6 +416,31 @@ static void map_log(const struct assembly *a, const char *log, struct membuf *ou
     }
 }
 
+int shader_map_log(const struct shader_desc *d, GLenum stage, const char *log, char **mapped,
+                   struct swell_err *err)
+{
+    *mapped = NULL;
+    struct assembly *a = calloc(1, sizeof *a);
+    if (!a)
+        return swell_fail(err, SWELL_E_NOMEM, "shader: no memory to assemble a stage");
+    int rc = assemble(d, stage, a, err);
+    struct membuf out = { 0 };
+    if (!rc) {
+        map_log(a, log, &out);
+        if (out.oom)
+            rc = swell_fail(err, SWELL_E_NOMEM, "shader: no memory to map a log");
+    }
+    free(a->out.p);
+    free(a);
+    if (!rc && !out.p && !(out.p = calloc(1, 1)))
+        rc = swell_fail(err, SWELL_E_NOMEM, "shader: no memory to map a log");
+    if (rc)
+        free(out.p);
+    else
+        *mapped = out.p;
+    return rc;
+}
+
 /* The driver's log for a shader (is_program 0) or program (1); malloc'd or NULL. */
 static char *gl_log(GLuint obj, int is_program)
 {

@@ -14,8 +14,8 @@
  *                               tier has highp fragment floats; SWELL_HAS_HIGHP is then defined)
  *     precision mediump float; (fragment, otherwise)
  * `#line N F` directives keep driver messages mapped to file and line: a compile error reads
- * "shaders_gles/ocean.frag:42: <driver message>". tools/validate-shaders.sh assembles the same
- * header for each tier.
+ * "shaders_gles/ocean.frag:42: <driver message>". tools/validate-shaders.sh compiles this very
+ * assembly (tools/shader_source.c) with glslang for every tier.
  */
 #ifndef SWELL_SHADER_H
 #define SWELL_SHADER_H
@@ -71,5 +71,9 @@ int  shader_labels(void);
  * driver sees it; malloc'd, caller frees. stage: GL_VERTEX_SHADER or GL_FRAGMENT_SHADER. */
 int  shader_assemble(const struct shader_desc *d, GLenum stage, char **source,
                      struct swell_err *err);
+/* A compiler's log for that stage ("S:L(C): msg" from Mesa, "ERROR: S:L: msg" from glslang and
+ * others) with every location as "dir/file:L: " of the file it is in; malloc'd, caller frees. */
+int  shader_map_log(const struct shader_desc *d, GLenum stage, const char *log, char **mapped,
+                    struct swell_err *err);
 
 #endif
