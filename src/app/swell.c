@@ -14,6 +14,7 @@
 
 #include "bake/bake.h"
 #include "app/bench.h"
+#include "core/args.h"
 #include "core/datadir.h"
 #include "core/camera.h"
 #include "gl/gpu.h"
@@ -129,16 +130,6 @@ static void usage(FILE *f)
     data_dir_usage(f);
 }
 
-static int opt_value(int argc, char **argv, int *i, const char **v)
-{
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "swell: %s needs a value (see --help)\n", argv[*i]);
-        return 2;
-    }
-    *v = argv[++*i];
-    return 0;
-}
-
 /* The --out text: plain, or exactly one %d conversion with optional 0 flag and width; "%%" is a
  * literal percent. Anything else could read arguments that are not there. Returns the number of
  * conversions, or -1 if the pattern is not allowed. */
@@ -178,53 +169,35 @@ static int parse_mode(const char *opt, const char *v, struct platform_desc *d,
     return parse_wxh(opt, buf, 16, 16384, &d->mode_w, &d->mode_h, err);
 }
 
-static int is_value_option(const char *a)
-{
-    static const char *const names[] = {
-        "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
-        "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
-        "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode", "--kms-api",
-        "--warmup", "--results", "--scene", "--debug", "--detile", "--scale",
-    };
-    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-        if (!strcmp(a, names[i]))
-            return 1;
-    return 0;
-}
-
 static int parse_args(int argc, char **argv, struct options *o)
 {
+    static const char *const flags[] = { "--verbose", "--bench", NULL };
+    static const char *const valued[] = {
+        "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
+        "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
+        "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode",
+        "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", NULL,
+    };
+    struct args args = { "swell", argc, argv, 1, flags, valued, 0 };
     struct swell_err err = { 0 };
-    int r = 0;
-    for (int i = 1; i < argc && !r; i++) {
-        const char *a = argv[i], *v = NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+    const char *a, *v;
+    int r = 0, k;
+    while (!r && (k = args_next(&args, &a, &v)) != ARGS_END) {
+        if (k == ARGS_ERROR)
+            return 2;
+        if (k == ARGS_HELP) {
             usage(stdout);
             exit(0);
         }
-        if (!strcmp(a, "--version")) {
+        if (k == ARGS_VERSION) {
             printf("swell " SWELL_VERSION "\n");
             exit(0);
         }
         if (!strcmp(a, "--verbose")) {
             o->verbose = o->platform.verbose = 1;
-            continue;
-        }
-        if (!strcmp(a, "--bench")) {
+        } else if (!strcmp(a, "--bench")) {
             o->bench = 1;
-            continue;
-        }
-        if (strncmp(a, "--", 2) != 0) {
-            fprintf(stderr, "swell: unexpected argument '%s' (see --help)\n", a);
-            return 2;
-        }
-        if (!is_value_option(a)) {
-            fprintf(stderr, "swell: unknown option '%s' (see --help)\n", a);
-            return 2;
-        }
-        if (opt_value(argc, argv, &i, &v))
-            return 2;
-        if (!strcmp(a, "--platform")) {
+        } else if (!strcmp(a, "--platform")) {
             if (!strcmp(v, "auto")) o->platform.kind = PLATFORM_AUTO;
             else if (!strcmp(v, "surfaceless")) o->platform.kind = PLATFORM_SURFACELESS;
             else if (!strcmp(v, "kms")) o->platform.kind = PLATFORM_KMS;

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "bake/bake.h"
+#include "core/args.h"
 #include "core/datadir.h"
 #include "core/fsutil.h"
 #include "core/parse.h"
@@ -53,16 +54,6 @@ static void usage(FILE *f)
     data_dir_usage(f);
 }
 
-static int opt_value(int argc, char **argv, int *i, const char **val)
-{
-    if (*i + 1 >= argc) {
-        fprintf(stderr, "swell-bake: %s needs a value (see --help)\n", argv[*i]);
-        return -1;
-    }
-    *val = argv[++*i];
-    return 0;
-}
-
 /* The report's folder must exist before a bake starts, so a typo never fails after the
  * tables were written. 1 (with a message) when it does not. */
 static int report_dir_missing(const char *path)
@@ -93,37 +84,29 @@ static int report_dir_missing(const char *path)
 
 static int parse_args(int argc, char **argv, struct options *o)
 {
+    static const char *const flags[] = { "--quiet", NULL };
+    static const char *const valued[] = { "--preset", "--out", "--report", NULL };
+    struct args args = { "swell-bake", argc, argv, 1, flags, valued, 1 };
     struct swell_err err = { 0 };
     struct seastate *s = &o->state;
-    int r = 0;
-    for (int i = 1; i < argc && !r; i++) {
-        const char *a = argv[i], *v = NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+    const char *a, *v;
+    int r = 0, k;
+    while (!r && (k = args_next(&args, &a, &v)) != ARGS_END) {
+        if (k == ARGS_ERROR)
+            return 2;
+        if (k == ARGS_HELP) {
             usage(stdout);
             exit(0);
         }
-        if (!strcmp(a, "--version")) {
+        if (k == ARGS_VERSION) {
             printf("swell-bake " SWELL_VERSION "\n");
             exit(0);
         }
-        if (!strcmp(a, "--quiet")) {
-            o->quiet = 1;
-            continue;
-        }
-        if (strncmp(a, "--", 2) != 0) {
-            fprintf(stderr, "swell-bake: unexpected argument '%s' (see --help)\n", a);
-            return 2;
-        }
-        if (opt_value(argc, argv, &i, &v))
-            return 2;
-        if (!strcmp(a, "--preset")) r = preset_load(v, s, &err);
-        else if (seastate_option(a)) r = seastate_set_option(s, seastate_option(a), v, &err);
+        if (!strcmp(a, "--quiet")) o->quiet = 1;
+        else if (!strcmp(a, "--preset")) r = preset_load(v, s, &err);
         else if (!strcmp(a, "--out")) o->out_dir = v;
         else if (!strcmp(a, "--report")) o->report = v;
-        else {
-            fprintf(stderr, "swell-bake: unknown option '%s' (see --help)\n", a);
-            return 2;
-        }
+        else r = seastate_set_option(s, seastate_option(a), v, &err);
     }
     if (r) {
         fprintf(stderr, "swell-bake: %s\n", err.msg);

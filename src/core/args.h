@@ -1,0 +1,25 @@
+/* args.h - the command line of both programs (swell, swell-bake): "--name" options with or
+ * without a value, --help/-h and --version. Every error is printed as "prog: ... (see --help)"
+ * for the caller to exit 2: an argument that is not an option, an unknown option, a missing
+ * value. The values themselves are checked by core/parse.h and core/seastate.h.
+ */
+#ifndef SWELL_ARGS_H
+#define SWELL_ARGS_H
+
+struct args {
+    const char *prog;                   /* names the program in messages */
+    int argc;
+    char **argv;
+    int i;                              /* next argument; start at 1 */
+    const char *const *flags;           /* options without a value, NULL-terminated */
+    const char *const *valued;          /* options with a value, NULL-terminated */
+    int sea_options;                    /* 1: every option of seastate_fields takes a value */
+};
+
+enum { ARGS_ERROR = -1, ARGS_END = 0, ARGS_OPTION, ARGS_HELP, ARGS_VERSION };
+
+/* The next option: ARGS_OPTION with *name and *value (NULL for a flag), ARGS_HELP, ARGS_VERSION,
+ * ARGS_END after the last, or ARGS_ERROR with the message printed to stderr. */
+int args_next(struct args *a, const char **name, const char **value);
+
+#endif
