@@ -16,6 +16,7 @@
 #include "app/bench.h"
 #include "core/args.h"
 #include "core/datadir.h"
+#include "core/version.h"
 #include "core/camera.h"
 #include "gl/gpu.h"
 #include "core/image.h"
@@ -27,7 +28,6 @@
 #include "tables/tables_io.h"
 #include "render/upscale.h"
 
-#define SWELL_VERSION "0.1.0"
 #define DEFAULT_FPS 30.0
 #define MAX_PATH_LEN 4096
 

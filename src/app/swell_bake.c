@@ -17,12 +17,12 @@
 #include "bake/bake.h"
 #include "core/args.h"
 #include "core/datadir.h"
+#include "core/version.h"
 #include "core/fsutil.h"
 #include "core/parse.h"
 #include "core/preset.h"
 #include "tables/tables_io.h"
 
-#define SWELL_VERSION "0.1.0"
 
 struct options {
     struct seastate state;
