@@ -57,7 +57,8 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
 int grid_row_count(const struct grid *g);
 void grid_row_span(const struct grid *g, int row, int *first, int *count, float *dist2_min);
 
-/* The projected grid's frame for a camera (grid.c), for building the grid in a vertex shader.
+/* The projected grid's frame for a camera (grid_project.c), for building the grid in a vertex
+ * shader.
  * The grid is cast from a projector at the camera's x, y, alt_ray above the sea plane and
  * pitched down by -pitch (radians) (Johanson 2004's projector; Bruneton 2010 §3 casts from the
  * camera itself): grid parameter (u, v) in [0, 1]^2 is the ray fwd + tan(phi(u)) right +
@@ -75,7 +76,7 @@ void grid_row_span(const struct grid *g, int row, int *first, int *count, float 
  * row_margin[0] (the screen bottom) to row_margin[1].
  * Rays meet the
  * plane alt_ray below the projector, else end at dmax. The range bounds every sea-plane point
- * whose displaced image can reach the camera's frustum (coverage by construction, grid.c).
+ * whose displaced image can reach the camera's frustum (coverage by construction, grid_project.c).
  * alt is the camera's height above the sea plane. */
 struct grid_projection {
     double fwd[3], right[3], up[3];
