@@ -94,7 +94,7 @@ vec3 disp_tap(sampler2D a, sampler2D b, int i, vec2 uv)
 }
 
 // Pattern i's displacement read at its lattice's three random offsets and blended (detile.h,
-// as grid.c detile_taps_cell), weighted by Bruneton eq. 2: 0 for waves shorter than 2 cells,
+// as detile.c detile_taps_cell), weighted by Bruneton eq. 2: 0 for waves shorter than 2 cells,
 // 1 from 4 cells up (grid.c).
 vec3 displacement(sampler2D a, sampler2D b, int i, vec2 rest, float foot)
 {

@@ -149,7 +149,7 @@ static void slot_tables_stats(struct renderer *r, struct fs_slot *sl)
 }
 
 /* Low quality fetches no whitecaps: the fragment patterns whose whitecaps vary, which the CPU
- * grid's vertices carry at their footprint's mip level (grid.c k_moment_pass), so eq. 6 per
+ * grid's vertices carry at their footprint's mip level (grid_pass.c k_moment_pass), so eq. 6 per
  * vertex sees the foam's patches as high quality's pixels do; with the patch's constants alone
  * every vertex had the same coverage (15 m/s from 10 m: low's rows up to 24 % darker than
  * high's near the camera, now 7 %: test_render test_quality_match). 0 in high quality. */

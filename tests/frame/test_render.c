@@ -723,7 +723,7 @@ static double worst_row_means(const uint8_t *a, const uint8_t *b, int *at)
  * against the best tier, the lattice off in both: every 8 rows' mean luminance within 1 %
  * (measured 0.1 %). While a tier's vertex shader built the grid (vertex texture fetch) there,
  * low quality took the patches' whitecap constants and gles2-min the whitecap tables per
- * vertex (grid.c k_moment_pass): 44.1 % apart, until choose_vtf kept low quality with foam on
+ * vertex (grid_pass.c k_moment_pass): 44.1 % apart, until choose_vtf kept low quality with foam on
  * the CPU grid. */
 static void test_tiers_low(void **state)
 {
@@ -1120,7 +1120,7 @@ static void test_resolved_drop(void **state)
  *   before: 25-47 % darker at 1 km, the distant glitter gone).
  * - At the surface in a breaking sea (15 m/s), both paths: low fetches no whitecap tables,
  *   and its vertices carry the fragment patterns' foam memory at their footprint's mip level
- *   (grid.c k_moment_pass): low shows high's patches, softer at the spacing of the vertices,
+ *   (grid_pass.c k_moment_pass): low shows high's patches, softer at the spacing of the vertices,
  *   where high's pixels draw foam with crisp, detailed edges (ocean.frag add_whitecap): at
  *   equal expected coverage, partly covered pixels come out brighter through the concave
  *   tone map and gamma than whole foam and whole water side by side (inferred: with high's

@@ -205,7 +205,7 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
  * than a blend block. */
 /* k-only vertices checked, by lattice (off, on) and by whether they took the flat top texel */
 static int g_k_checked[2][2];
-static int g_k_magnified;   /* ...of them at a magnified level 0 (grid.c magnified_var) */
+static int g_k_magnified;   /* ...of them at a magnified level 0 (grid_pass.c magnified_var) */
 static double g_alt = 6.0;  /* the camera's altitude, m */
 
 /* detile 0: grid_desc no_detile, the reference reads one tap at no offset; k_only: pattern 0
@@ -328,7 +328,7 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                 }
                 /* k-only, level 0 magnified (r texels per footprint under 1): level 0's mean
                  * within-texel variance W0 in place of the bilinear mix's, from r = 1/2 down,
-                 * linear in r up to 1 (grid.c magnified_var) */
+                 * linear in r up to 1 (grid_pass.c magnified_var) */
                 double r0 = foot * wt->width / s.pattern[0].size_m;
                 if (k_only && klev == 0 && r0 < 1.0) {
                     double w0 = table_level_within_var(wt, 0, 0, 1);
