@@ -2,6 +2,7 @@
 #include <math.h>
 #include <string.h>
 #include "core/camera.h"
+#include "core/parse.h"
 
 #define CAM_PI 3.14159265358979323846
 
@@ -60,15 +61,12 @@ void camera_path_at(int path, double t_s, struct camera *out)
 
 int camera_path_from_name(const char *name)
 {
-    for (int i = 0; name && i < CAMERA_PATH_COUNT; i++)
-        if (strcmp(name, path_names[i]) == 0)
-            return i;
-    return -1;
+    return parse_name(path_names, 0, CAMERA_PATH_COUNT, name);
 }
 
 const char *camera_path_name(int path)
 {
-    return path >= 0 && path < CAMERA_PATH_COUNT ? path_names[path] : "?";
+    return name_of(path_names, CAMERA_PATH_COUNT, path);
 }
 
 void camera_view_rel(const struct camera *c, mat4 view)

@@ -170,3 +170,16 @@ int parse_has_token(const char *list, const char *name)
     }
     return 0;
 }
+
+int parse_name(const char *const *names, int first, int count, const char *name)
+{
+    for (int i = first; name && i < count; i++)
+        if (strcmp(names[i], name) == 0)
+            return i;
+    return -1;
+}
+
+const char *name_of(const char *const *names, int count, int value)
+{
+    return value >= 0 && value < count ? names[value] : "?";
+}

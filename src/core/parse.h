@@ -23,6 +23,11 @@ int parse_wxh(const char *opt, const char *text, int lo, int hi, int *w, int *h,
 int parse_doubles(const char *opt, const char *text, int n, double lo, double hi, double *out,
                   struct swell_err *err);
 
+/* Enum names through a table names[count]: the value named `name` from index `first` on (a
+ * table's "default" at 0 can be skipped), or -1; and a value's name, "?" outside the table. */
+int parse_name(const char *const *names, int first, int count, const char *name);
+const char *name_of(const char *const *names, int count, int value);
+
 /* 1 when `name` is a whole space-separated token of `list` (EGL/GL extension strings: exact
  * names, never substrings - "GL_OES_texture_half_float" must not match "..._linear"). */
 int parse_has_token(const char *list, const char *name);

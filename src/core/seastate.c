@@ -227,32 +227,22 @@ void seastate_usage(FILE *out, int tables)
     }
 }
 
-static int name_lookup(const char *const *names, int count, const char *name)
-{
-    if (!name)
-        return -1;
-    for (int i = 1; i < count; i++)
-        if (strcmp(names[i], name) == 0)
-            return i;
-    return -1;
-}
-
 const char *spectrum_name(int kind)
 {
-    return kind >= 0 && kind < SPECTRUM_COUNT ? spectrum_names[kind] : "?";
+    return name_of(spectrum_names, SPECTRUM_COUNT, kind);
 }
 
 int spectrum_from_name(const char *name)
 {
-    return name_lookup(spectrum_names, SPECTRUM_COUNT, name);
+    return parse_name(spectrum_names, 1, SPECTRUM_COUNT, name);
 }
 
 const char *whitecap_model_name(int model)
 {
-    return model >= 0 && model < WHITECAP_COUNT ? whitecap_names[model] : "?";
+    return name_of(whitecap_names, WHITECAP_COUNT, model);
 }
 
 int whitecap_model_from_name(const char *name)
 {
-    return name_lookup(whitecap_names, WHITECAP_COUNT, name);
+    return parse_name(whitecap_names, 1, WHITECAP_COUNT, name);
 }

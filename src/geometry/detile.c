@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stddef.h>
 #include "geometry/detile.h"
+#include "core/parse.h"
 
 /* A fixed table: the same sea on every machine and in every stage. Bytes from a 32-bit
  * xorshift (Marsaglia 2003) of each index and a fixed seed. */
@@ -95,4 +96,11 @@ void detile_camera_shift(int pattern, double cam_x, double cam_y, double inv_l, 
     out[0] = (float)wrap(cx + (double)DETILE_SHIFT_X * pattern, DETILE_N);
     out[1] = (float)wrap(cy + (double)DETILE_SHIFT_Y * pattern, DETILE_N);
     out[2] = (float)wrap(cx + cy, 3.0);
+}
+
+static const char *const detile_names[DETILE_MODE_COUNT] = { "auto", "on", "off" };
+const char *detile_mode_name(int m) { return name_of(detile_names, DETILE_MODE_COUNT, m); }
+int detile_mode_from_name(const char *name)
+{
+    return parse_name(detile_names, 0, DETILE_MODE_COUNT, name);
 }

@@ -42,6 +42,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* Whether the renderer reads the patterns through this lattice (swell --detile): AUTO is ON in
+ * high quality and OFF in low (Hu's single pass for the weakest GPUs, where the lattice would
+ * cost 2-3.5x the frame on llvmpipe; README), and OFF in high quality too where the driver
+ * refuses more of its programs with the lattice than without (renderer.c renderer_create);
+ * OFF reads each pattern once, at no offset, so its tiles repeat. */
+enum detile_mode { DETILE_MODE_AUTO = 0, DETILE_MODE_ON, DETILE_MODE_OFF, DETILE_MODE_COUNT };
+const char *detile_mode_name(int m);            /* "auto", "on", "off" */
+int detile_mode_from_name(const char *name);    /* DETILE_MODE_* or -1 */
+
 #define DETILE_CELLS 2            /* lattice cells per tile, per axis */
 #define DETILE_N 128              /* the hash's period, cells (a power of two): 64 tiles */
 #define DETILE_OFFSETS 8          /* an offset is (b >> 3, b & 7) / 8 tiles, b the hash byte */

@@ -7,7 +7,15 @@
 #include <math.h>
 #include <stdlib.h>
 #include "geometry/grid_internal.h"
+#include "core/parse.h"
 #include "tables/quantize.h"
+
+static const char *const geometry_names[GEOMETRY_COUNT] = { "grid", "patches" };
+const char *geometry_kind_name(int g) { return name_of(geometry_names, GEOMETRY_COUNT, g); }
+int geometry_kind_from_name(const char *name)
+{
+    return parse_name(geometry_names, 0, GEOMETRY_COUNT, name);
+}
 
 #define NEAR_FADE 0.1         /* last tenth of the near patch fades the displacement to 0 */
 
@@ -42,7 +50,7 @@ static void quad(uint16_t *idx, int *n, int a, int b, int c, int d)
 static int build_topology(struct grid *g, struct swell_err *err)
 {
     int n = 0;
-    if (g->kind == 0) {
+    if (g->kind == GEOMETRY_GRID) {
         g->nverts = g->w * g->h;
         g->idx = malloc(sizeof(uint16_t) * 6 * (size_t)(g->w - 1) * (size_t)(g->h - 1));
         if (!g->idx)
@@ -110,7 +118,7 @@ static void init_fade(struct grid *g)
 {
     int near0 = (FAR_RINGS + 1) * 4 * (NEAR_N - 1);
     double inv = 1.0 / (NEAR_N - 1);
-    if (g->kind == 0) {
+    if (g->kind == GEOMETRY_GRID) {
         for (int k = 0; k < g->nverts; k++)
             g->fade[k] = 1.0f;
         return;
@@ -170,14 +178,14 @@ int grid_create(const struct grid_desc *d, struct grid **out, struct swell_err *
     g->kind = d->kind;
     g->w = d->w > 0 ? d->w : 80;
     g->h = d->h > 0 ? d->h : 56;
-    if (g->kind == 0 && (g->w < 2 || g->h < 2 || g->w * g->h > 65536)) {
+    if (g->kind == GEOMETRY_GRID && (g->w < 2 || g->h < 2 || g->w * g->h > 65536)) {
         rc = swell_fail(err, SWELL_E_ARG, "grid: %d x %d vertices; need 2..65536 in all "
                         "(16-bit indices on GLES2)", g->w, g->h);
         goto fail;
     }
     if ((rc = build_topology(g, err)))
         goto fail;
-    g->rows = g->kind == 0 ? g->h - 1 : FAR_RINGS + NEAR_RINGS;
+    g->rows = g->kind == GEOMETRY_GRID ? g->h - 1 : FAR_RINGS + NEAR_RINGS;
     g->npad = (g->nverts + VBLK - 1) / VBLK * VBLK;
     g->ws = (g->w + VBLK - 1) / VBLK * VBLK;
     {
@@ -302,9 +310,9 @@ int grid_row_count(const struct grid *g) { return g->rows; }
 
 void grid_row_span(const struct grid *g, int row, int *first, int *count, float *dist2_min)
 {
-    int per_row = g->kind == 0 ? 6 * (g->w - 1) : 6 * 4 * (NEAR_N - 1);
-    int far_idx = g->kind == 0 ? 0 : FAR_RINGS * per_row;
-    if (g->kind == 0 || row < FAR_RINGS) {
+    int per_row = g->kind == GEOMETRY_GRID ? 6 * (g->w - 1) : 6 * 4 * (NEAR_N - 1);
+    int far_idx = g->kind == GEOMETRY_GRID ? 0 : FAR_RINGS * per_row;
+    if (g->kind == GEOMETRY_GRID || row < FAR_RINGS) {
         *first = row * per_row;
         *count = per_row;
     } else {

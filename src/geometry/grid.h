@@ -23,9 +23,14 @@ enum grid_attr {
     GRID_A_PAD = 11, GRID_FLOATS = 12
 };
 
+/* The geometry of the sea: Bruneton's projected grid, or Hu's near and far patches. */
+enum geometry_kind { GEOMETRY_GRID = 0, GEOMETRY_PATCHES, GEOMETRY_COUNT };
+const char *geometry_kind_name(int g);          /* "grid", "patches" */
+int geometry_kind_from_name(const char *name);  /* GEOMETRY_* or -1 */
+
 struct grid_desc {
     const struct swell_tables *tables;  /* not owned */
-    int kind;                 /* enum geometry_kind (renderer.h): 0 projected grid, 1 patches */
+    int kind;                 /* enum geometry_kind */
     int w, h;                 /* projected grid vertices; default 96 x 64 (cells of about 13 x 11 pixels at 1280x720) */
     unsigned cpu_patterns;    /* bit i: pattern i's slope/whitecap moments resolved per vertex */
     unsigned k_patterns;      /* bit i (not a CPU pattern): its whitecap moments alone resolved

@@ -509,7 +509,7 @@ int grid_update(struct grid *g, const struct camera *cam, float aspect, double t
     struct pattern_frame pf[SWELL_MAX_PATTERNS];    /* the CPU patterns' */
     struct disp_frame df[SWELL_MAX_PATTERNS];       /* the displacing patterns' */
     int n, np = 0, nd = 0;
-    n = g->kind == 0 ? update_projected(g, cam, aspect) : update_patches(g, cam, aspect);
+    n = g->kind == GEOMETRY_GRID ? update_projected(g, cam, aspect) : update_patches(g, cam, aspect);
     if (n == 0)
         return 0;
     float foot_lo = g->foot_lo_wet > 1e-6f ? g->foot_lo_wet : 1e-6f;

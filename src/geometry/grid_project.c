@@ -454,7 +454,7 @@ void row_distances(struct grid *g)
 {
     int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per, mid = NEAR_RINGS;
     for (int r = 0; r < g->rows; r++) {
-        if (g->kind == 0) {
+        if (g->kind == GEOMETRY_GRID) {
             float a = g->row_d2[r], b = g->row_d2[r + 1];
             g->row_foot[r] = b < a ? b : a;
             continue;

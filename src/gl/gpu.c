@@ -28,17 +28,12 @@ static const char *const tier_names[TIER_COUNT] = { "gles2-min", "gles2-ext", "g
 
 const char *gpu_tier_name(int tier)
 {
-    if (tier < 0 || tier >= TIER_COUNT)
-        return "?";
-    return tier_names[tier];
+    return name_of(tier_names, TIER_COUNT, tier);
 }
 
 int gpu_tier_from_name(const char *name)
 {
-    for (int i = 0; name && i < TIER_COUNT; i++)
-        if (strcmp(name, tier_names[i]) == 0)
-            return i;
-    return -1;
+    return parse_name(tier_names, 0, TIER_COUNT, name);
 }
 
 /* "OpenGL ES 3.2 Mesa ..." or "OpenGL ES-CM 1.1" -> major; 0 when unparsable. */

@@ -26,42 +26,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "core/parse.h"
 #include "render/internal.h"
 
 static const char *const quality_names[QUALITY_COUNT] = { "high", "low" };
-static const char *const geometry_names[GEOMETRY_COUNT] = { "grid", "patches" };
-static const char *const detile_names[DETILE_MODE_COUNT] = { "auto", "on", "off" };
 
-/* An enum's name and its value from a name (-1 if none) through its table of n names. */
-static const char *enum_name(const char *const *names, int n, int v)
-{
-    return v >= 0 && v < n ? names[v] : "?";
-}
-
-static int enum_from_name(const char *const *names, int n, const char *name)
-{
-    for (int i = 0; name && i < n; i++)
-        if (strcmp(name, names[i]) == 0)
-            return i;
-    return -1;
-}
-
-const char *render_quality_name(int q) { return enum_name(quality_names, QUALITY_COUNT, q); }
+const char *render_quality_name(int q) { return name_of(quality_names, QUALITY_COUNT, q); }
 int render_quality_from_name(const char *name)
 {
-    return enum_from_name(quality_names, QUALITY_COUNT, name);
+    return parse_name(quality_names, 0, QUALITY_COUNT, name);
 }
-const char *geometry_kind_name(int g) { return enum_name(geometry_names, GEOMETRY_COUNT, g); }
-int geometry_kind_from_name(const char *name)
-{
-    return enum_from_name(geometry_names, GEOMETRY_COUNT, name);
-}
-const char *detile_mode_name(int m) { return enum_name(detile_names, DETILE_MODE_COUNT, m); }
-int detile_mode_from_name(const char *name)
-{
-    return enum_from_name(detile_names, DETILE_MODE_COUNT, name);
-}
-
 int renderer_detile(const struct renderer *r)
 {
     return r->d.detile == DETILE_MODE_ON;

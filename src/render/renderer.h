@@ -12,23 +12,18 @@
 #include "core/camera.h"
 #include "core/err.h"
 #include "gl/gpu.h"
+#include "geometry/detile.h"
+#include "geometry/grid.h"
 #include "tables/tables.h"
 
 enum render_quality { QUALITY_HIGH = 0, QUALITY_LOW, QUALITY_COUNT };
-enum geometry_kind { GEOMETRY_GRID = 0, GEOMETRY_PATCHES, GEOMETRY_COUNT };
-/* The lattice of random offsets that keeps each pattern from repeating on its tile (detile.h):
- * AUTO is ON in high quality and OFF in low (Hu's single pass for the weakest GPUs, where the
- * lattice would cost 2-3.5x the frame on llvmpipe; README), and OFF in high quality too where
- * the driver refuses more of its programs with the lattice than without (renderer_create);
- * OFF reads each pattern once, at no offset, so its tiles repeat. */
-enum detile_mode { DETILE_MODE_AUTO = 0, DETILE_MODE_ON, DETILE_MODE_OFF, DETILE_MODE_COUNT };
 
 struct renderer_desc {
     const struct swell_tables *tables;  /* not owned; must outlive the renderer */
     struct gpu *gpu;                    /* not owned; context current */
     const char *shader_dir;             /* default NULL: found (core/datadir.h) */
     int quality;                        /* enum render_quality. default HIGH */
-    int geometry;                       /* enum geometry_kind. default GRID */
+    int geometry;                       /* enum geometry_kind (grid.h). default GRID */
     int grid_w, grid_h;                 /* projected-grid vertices; default 0 = 96 x 64 */
     float sun_elev_deg;                 /* sun elevation above the horizon; default 0 = 30 */
     float sun_azim_deg;                 /* sun azimuth, CCW from +x; default 0 */
@@ -60,7 +55,8 @@ struct renderer_desc {
     int cpu_vertex_terms;               /* 1: on gles2-min the terms of each vertex on the CPU
                                          * (vshade.h) from the start; default 0: only where the
                                          * driver refuses ocean.vert's (renderer_create) */
-    int detile;                         /* enum detile_mode (swell --detile); default AUTO.
+    int detile;                         /* enum detile_mode (detile.h; swell --detile);
+                                         * default AUTO.
                                          * The CPU query (sea.h) takes renderer_detile's flag */
     int debug_uncovered;                /* 1: clear to magenta (255, 0, 255) before the sky and
                                          * the sea, so a pixel neither covers shows (swell
@@ -124,9 +120,5 @@ void renderer_destroy(struct renderer *r);
 
 const char *render_quality_name(int q);
 int render_quality_from_name(const char *name);
-const char *geometry_kind_name(int g);
-int geometry_kind_from_name(const char *name);
-const char *detile_mode_name(int m);
-int detile_mode_from_name(const char *name);
 
 #endif
