@@ -103,7 +103,37 @@ void camera_clip_planes(const struct camera *c, float *n, float *f)
 void camera_projection(const struct camera *c, float aspect, mat4 proj)
 {
     float n, f;
-    float fov = c->fov_y_deg > 0.0f ? c->fov_y_deg : 45.0f;
+    float fov = c->fov_y_deg > 0.0f ? c->fov_y_deg : CAMERA_FOV_DEFAULT_DEG;
     camera_clip_planes(c, &n, &f);
     glm_perspective_rh_no(glm_rad(fov), aspect > 0.0f ? aspect : 1.0f, n, f, proj);
+}
+
+void camera_basis(double h_deg, double p_deg, double fwd[3], double right[3], double up[3])
+{
+    double h = h_deg * M_PI / 180.0, p = p_deg * M_PI / 180.0;
+    fwd[0] = cos(p) * cos(h); fwd[1] = cos(p) * sin(h); fwd[2] = sin(p);
+    right[0] = sin(h); right[1] = -cos(h); right[2] = 0.0;
+    up[0] = right[1] * fwd[2] - right[2] * fwd[1];
+    up[1] = right[2] * fwd[0] - right[0] * fwd[2];
+    up[2] = right[0] * fwd[1] - right[1] * fwd[0];
+}
+
+void camera_frame_make(const struct camera *c, int width, int height, struct camera_frame *out)
+{
+    memset(out, 0, sizeof *out);
+    out->cam = *c;
+    out->width = width;
+    out->height = height;
+    out->aspect = height > 0 ? (float)width / (float)height : 1.0f;
+    camera_clip_planes(c, &out->near_m, &out->far_m);
+    float fov_deg = c->fov_y_deg > 0.0f ? c->fov_y_deg : CAMERA_FOV_DEFAULT_DEG;
+    out->fov_y_rad = fov_deg * M_PI / 180.0;
+    camera_basis(c->heading_deg, c->pitch_deg, out->fwd, out->right, out->up);
+    float fov_f = fov_deg * (float)(M_PI / 180.0);
+    out->pixel_rad = 2.0f * tanf(0.5f * fov_f) / (float)(height > 0 ? height : 1);
+    out->footprint_alt_m = c->pos[2] > CAMERA_FOOTPRINT_MIN_ALT_M ? c->pos[2]
+                                                                  : CAMERA_FOOTPRINT_MIN_ALT_M;
+    camera_view_rel(c, out->view_rel);
+    camera_projection(c, out->aspect, out->proj);
+    glm_mat4_mul(out->proj, out->view_rel, out->world_to_clip);
 }

@@ -45,6 +45,33 @@ void camera_path_at(int path, double t_s, struct camera *out);
 int camera_path_from_name(const char *name);   /* CAMERA_PATH_* or -1 */
 const char *camera_path_name(int path);
 
+/* The field of view when the camera's is 0, degrees. */
+#define CAMERA_FOV_DEFAULT_DEG 45.0f
+/* Pixel footprints are taken from at least this altitude, m (a camera at the surface). */
+#define CAMERA_FOOTPRINT_MIN_ALT_M 0.5
+
+/* What a frame's users need of the camera, made once per frame (camera_frame_make) and passed
+ * down to the renderer's modules, the grid and the sky: none of them recomputes a default, a
+ * clip plane, a basis or a matrix from the camera's angles. */
+struct camera_frame {
+    struct camera cam;          /* as drawn (renderer_frame fills surface_z_m and keeps it
+                                 * CAMERA_CLEARANCE_M above the sea) */
+    int width, height;          /* the viewport, pixels */
+    float aspect;               /* width / height (1 without a height) */
+    float near_m, far_m;        /* camera_clip_planes */
+    double fov_y_rad;           /* the vertical field of view, the default applied */
+    double fwd[3], right[3], up[3];  /* the view's orthonormal basis, world axes */
+    float pixel_rad;            /* one pixel's vertical angle, rad: 2 tan(fov / 2) / height */
+    double footprint_alt_m;     /* altitude for pixel footprints, >= CAMERA_FOOTPRINT_MIN_ALT_M */
+    mat4 view_rel, proj;        /* camera-relative view (translation removed), projection */
+    mat4 world_to_clip;         /* proj x view_rel: camera-relative world to clip space */
+};
+
+void camera_frame_make(const struct camera *c, int width, int height, struct camera_frame *out);
+
+/* The basis of a view along heading h and pitch p (degrees): forward, right (horizontal), up. */
+void camera_basis(double h_deg, double p_deg, double fwd[3], double right[3], double up[3]);
+
 /* Camera-relative view (translation removed) and projection for an aspect ratio. */
 void camera_view_rel(const struct camera *c, mat4 view);
 void camera_projection(const struct camera *c, float aspect, mat4 proj);

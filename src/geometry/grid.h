@@ -49,10 +49,10 @@ int grid_vertex_count(const struct grid *g);
 int grid_index_count(const struct grid *g);
 const uint16_t *grid_indices(const struct grid *g);
 
-/* Per frame: fill verts[grid_vertex_count * GRID_FLOATS] for the camera (proj gives the far
- * plane and the projected grid's frustum). Returns the number of indices to draw (0 when no sea
- * is in view). Allocates nothing. */
-int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts);
+/* Per frame: fill verts[grid_vertex_count * GRID_FLOATS] for the frame's camera (its far plane,
+ * field of view and basis bound the projected grid's frustum). Returns the number of indices to
+ * draw (0 when no sea is in view). Allocates nothing. */
+int grid_update(struct grid *g, const struct camera_frame *view, double t_s, float *verts);
 
 /* Rows of triangles in draw order (far to near): the projected grid's h - 1 rows of cells, or
  * the far rings then the near patch's rows. After grid_update, row r spans indices
@@ -101,8 +101,7 @@ double grid_row_tan(const struct grid_projection *p, double v);
 
 /* Fill p for the camera and the rows' distances (grid_row_span) without building vertices.
  * Returns the number of indices to draw, 0 when no sea is in view (or for patches). */
-int grid_projection(struct grid *g, const struct camera *cam, float aspect,
-                    struct grid_projection *p);
+int grid_projection(struct grid *g, const struct camera_frame *view, struct grid_projection *p);
 
 /* Texture-coordinate offset of pattern i for this camera: frac(camera_xy / L_i), wrapped in
  * double so an hour in looks like the first second; uv = offset + rest_xy / L_i. */

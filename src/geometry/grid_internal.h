@@ -229,8 +229,8 @@ static inline f4 tap4(const char *restrict base, const char *restrict base_c, in
 
 /* grid_project.c: the rest positions and footprints of a frame (0 when no sea is in view, else
  * the index count), and the rows' distances from them (grid_row_span). */
-int update_projected(struct grid *g, const struct camera *cam, float aspect);
-int update_patches(struct grid *g, const struct camera *cam, float aspect);
+int update_projected(struct grid *g, const struct camera_frame *view);
+int update_patches(struct grid *g, const struct camera_frame *view);
 void row_distances(struct grid *g);
 
 #endif

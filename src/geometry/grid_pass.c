@@ -504,12 +504,13 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
     }
 }
 
-int grid_update(struct grid *g, const struct camera *cam, float aspect, double t_s, float *verts)
+int grid_update(struct grid *g, const struct camera_frame *view, double t_s, float *verts)
 {
+    const struct camera *cam = &view->cam;
     struct pattern_frame pf[SWELL_MAX_PATTERNS];    /* the CPU patterns' */
     struct disp_frame df[SWELL_MAX_PATTERNS];       /* the displacing patterns' */
     int n, np = 0, nd = 0;
-    n = g->kind == GEOMETRY_GRID ? update_projected(g, cam, aspect) : update_patches(g, cam, aspect);
+    n = g->kind == GEOMETRY_GRID ? update_projected(g, view) : update_patches(g, view);
     if (n == 0)
         return 0;
     float foot_lo = g->foot_lo_wet > 1e-6f ? g->foot_lo_wet : 1e-6f;

@@ -12,24 +12,13 @@
 
 /* How far the grid reaches: the farthest crest the camera can see over a sphere, its own
  * horizon sqrt(2 R h + h^2) plus a crest's, sqrt(2 R crest) (within the far plane). */
-static float far_distance(const struct grid *g, const struct camera *cam)
+static float far_distance(const struct grid *g, const struct camera_frame *view)
 {
-    float n, f;
+    const struct camera *cam = &view->cam;
+    float f = view->far_m;
     double h = fmax(cam->pos[2] - cam->surface_z_m, CAMERA_CLEARANCE_M) + fmax(cam->surface_z_m, 0.0);
-    camera_clip_planes(cam, &n, &f);
     double d = sqrt(2.0 * EARTH_RADIUS_M * h + h * h) + sqrt(2.0 * EARTH_RADIUS_M * g->crest_m);
     return (float)fmin(0.9 * f, 1.02 * d);
-}
-
-/* Camera basis for heading h and pitch p (degrees): forward, right (horizontal), up. */
-static void basis_hp(double h_deg, double p_deg, double fwd[3], double right[3], double up[3])
-{
-    double h = h_deg * M_PI / 180.0, p = p_deg * M_PI / 180.0;
-    fwd[0] = cos(p) * cos(h); fwd[1] = cos(p) * sin(h); fwd[2] = sin(p);
-    right[0] = sin(h); right[1] = -cos(h); right[2] = 0.0;
-    up[0] = right[1] * fwd[2] - right[2] * fwd[1];
-    up[1] = right[2] * fwd[0] - right[0] * fwd[2];
-    up[2] = right[0] * fwd[1] - right[1] * fwd[0];
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -130,18 +119,17 @@ static void horizon_rows(struct grid_projection *p, int h)
  * grid. The projector is the camera where that is possible (views from above every crest: the
  * grid's rows follow the screen's), else raised above the crests and pitched down until the
  * points near and behind the camera are in front of it. */
-static int projection_frame(const struct grid *g, const struct camera *cam, float aspect,
+static int projection_frame(const struct grid *g, const struct camera_frame *view,
                             struct grid_projection *p)
 {
-    double fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * M_PI / 180.0;
-    double cf[3], cr[3], cu[3], q[HULL_MAX][2];
-    float near_m, far_m;
+    const struct camera *cam = &view->cam;
+    const double *cf = view->fwd, *cr = view->right, *cu = view->up;
+    double q[HULL_MAX][2];
+    float near_m = view->near_m, far_m = view->far_m;
     memset(p, 0, sizeof(*p));
-    camera_clip_planes(cam, &near_m, &far_m);
-    double ty = tan(0.5 * fov), tx = ty * aspect;
+    double ty = tan(0.5 * view->fov_y_rad), tx = ty * view->aspect;
     p->alt = cam->pos[2];
-    p->dmax = far_distance(g, cam);
-    basis_hp(cam->heading_deg, cam->pitch_deg, cf, cr, cu);
+    p->dmax = far_distance(g, view);
     /* The sea lies on a sphere: at distance r it is r^2 / (2 R) lower, so the slab's floor is
      * lowered by the drop at the farthest point the region reaches (twice: from the flat
      * slab's reach, then from the lowered one's; at most dmax's). */
@@ -166,7 +154,7 @@ static int projection_frame(const struct grid *g, const struct camera *cam, floa
     for (;; pitch -= PROJ_STEP_DEG) {
         if (pitch < -89.0)
             pitch = -89.0;
-        basis_hp(cam->heading_deg, pitch, p->fwd, p->right, p->up);
+        camera_basis(cam->heading_deg, pitch, p->fwd, p->right, p->up);
         int ok = 1;
         for (int k = 0; k < nq && ok; k++) {
             double d[3] = { q[k][0], q[k][1], -p->alt_ray };
@@ -299,10 +287,10 @@ static void foot_blocks(int n, int w, const float *restrict rx, const float *res
         }
 }
 
-int update_projected(struct grid *g, const struct camera *cam, float aspect)
+int update_projected(struct grid *g, const struct camera_frame *view)
 {
     struct grid_projection p;
-    if (!projection_frame(g, cam, aspect, &p))
+    if (!projection_frame(g, view, &p))
         return 0;
     const double *fwd = p.fwd, *right = p.right, *up = p.up;
     double alt_ray = p.alt_ray, dmax = p.dmax;
@@ -402,14 +390,15 @@ int update_projected(struct grid *g, const struct camera *cam, float aspect)
  * world space (no swimming), whose displacement fades to zero on its border (Hu: border heights
  * forced to zero so the patches stitch), and a flat far patch of FAR_RINGS square rings growing
  * geometrically from the near border to the far plane, bump-mapped only. */
-int update_patches(struct grid *g, const struct camera *cam, float aspect)
+int update_patches(struct grid *g, const struct camera_frame *view)
 {
-    double alt = cam->pos[2] > 0.5 ? cam->pos[2] : 0.5;
+    const struct camera *cam = &view->cam;
+    double alt = view->footprint_alt_m;
     double half = fmin(fmax(8.0 * alt, 64.0), 4000.0);
     double cell = 2.0 * half / (NEAR_N - 1);
     double ox = -(cam->pos[0] - cell * floor(cam->pos[0] / cell));
     double oy = -(cam->pos[1] - cell * floor(cam->pos[1] / cell));
-    double dmax = far_distance(g, cam);
+    double dmax = far_distance(g, view);
     double q = pow(fmax(dmax / half, 1.0001), 1.0 / FAR_RINGS);
     int per = 4 * (NEAR_N - 1), near0 = (FAR_RINGS + 1) * per;
     double inv = 1.0 / (NEAR_N - 1);
@@ -492,10 +481,9 @@ void row_distances(struct grid *g)
  * view's azimuth, so along a row of constant NDC y the horizontal distance is least at x = 0,
  * or at the column nearest it).
  * Returns 0 when no sea is in view. */
-int grid_projection(struct grid *g, const struct camera *cam, float aspect,
-                    struct grid_projection *p)
+int grid_projection(struct grid *g, const struct camera_frame *view, struct grid_projection *p)
 {
-    if (!projection_frame(g, cam, aspect, p) || g->kind != 0)
+    if (!projection_frame(g, view, p) || g->kind != GEOMETRY_GRID)
         return 0;
     for (int r = 0; r < g->rows; r++) {
         /* row r spans grid rows r (farther) and r + 1 (nearer) */

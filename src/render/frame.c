@@ -120,18 +120,18 @@ static float haze_air_mass(const struct sky_haze *hz, const struct camera *cam)
     return (float)(h > 1e-3 * hs ? -expm1(-h / hs) / h : (1.0 - 0.5 * h / hs) / hs);
 }
 
-/* The camera's altitude for the pixel footprint (at least 0.5 m) and one pixel's angle, rad. */
-static void view_scale(const struct camera *cam, int height, float *alt, float *pix)
+/* The camera's altitude for the pixel footprint and one pixel's angle, rad (camera.h). */
+static void view_scale(const struct camera_frame *view, float *alt, float *pix)
 {
-    float fov = (cam->fov_y_deg > 0.0f ? cam->fov_y_deg : 45.0f) * (float)(M_PI / 180.0);
-    *alt = fmaxf((float)cam->pos[2], 0.5f);
-    *pix = 2.0f * tanf(0.5f * fov) / (float)(height > 0 ? height : 1);
+    *alt = (float)view->footprint_alt_m;
+    *pix = view->pixel_rad;
 }
 
 /* This frame's values for the terms of the vertex alone: vshade.c takes them on gles2-min, the
  * programs (ocean.vert's vterms.glsl, and ocean.frag some of them) as uniforms. */
-static void vertex_frame(struct renderer *r, const struct camera *cam, int height)
+static void vertex_frame(struct renderer *r, const struct camera_frame *view)
 {
+    const struct camera *cam = &view->cam;
     struct vshade_frame *f = &r->vf;
     float alt, pix;
     memset(f, 0, sizeof(*f));
@@ -140,7 +140,7 @@ static void vertex_frame(struct renderer *r, const struct camera *cam, int heigh
     f->fresnel_uv_scale[0] = (float)r->fresnel->width / (float)r->atlas_w;
     f->fresnel_uv_scale[1] = (float)r->fresnel->height / (float)r->atlas_h;
     f->sky_map_size = (float)r->sky.size;
-    view_scale(cam, height, &alt, &pix);
+    view_scale(view, &alt, &pix);
     f->lod_frame[0] = alt * alt;
     f->lod_frame[1] = log2f(pix / alt);
     memcpy(f->haze_tau, r->haze.tau_ext, sizeof(f->haze_tau));
@@ -153,9 +153,9 @@ static void vertex_frame(struct renderer *r, const struct camera *cam, int heigh
 
 /* Uniforms of the variant fetching the first k slots' slopes and the first kw's whitecaps;
  * the rest enter as their patches' constants. */
-static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct camera *cam,
-                               mat4 world_to_clip)
+static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct camera_frame *view)
 {
+    const struct camera *cam = &view->cam;
     const GLint *u = r->ou[VARIANT(k, kw)];
     if (r->vtf)
         set_vtf_uniforms(r, VARIANT(k, kw), cam);
@@ -201,7 +201,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         }
     }
     sea_light(r, sun, sea, foam);
-    glUniformMatrix4fv(u[OU_WORLD_TO_CLIP], 1, GL_FALSE, (const GLfloat *)world_to_clip);
+    glUniformMatrix4fv(u[OU_WORLD_TO_CLIP], 1, GL_FALSE, (const GLfloat *)view->world_to_clip);
     glUniform2fv(u[OU_UV_OFFSET], SWELL_MAX_PATTERNS, &off[0][0]);
     glUniform1fv(u[OU_INV_SIZE], SWELL_MAX_PATTERNS, inv);
     glUniform4fv(u[OU_SLOPE_SCALE], SWELL_MAX_PATTERNS, &ss[0][0]);
@@ -250,11 +250,10 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
  * run_lod, at the same levels). */
-static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
-                      int height)
+static void draw_runs(struct renderer *r, const struct camera_frame *view)
 {
     float alt, pix;
-    view_scale(cam, height, &alt, &pix);
+    view_scale(view, &alt, &pix);
     int rows = grid_row_count(r->grid), run_first = 0, run_count = 0, run_k = -1, run_kw = -1;
     int run_early = 0;
     uint32_t run_key = 0;
@@ -296,7 +295,7 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
                 run_kw = VARIANT_KW(use);
             }
             glUseProgram(r->ocean[VARIANT(run_k, run_kw)].program);
-            set_ocean_uniforms(r, run_k, run_kw, cam, world_to_clip);
+            set_ocean_uniforms(r, run_k, run_kw, view);
             set_run_lods(r, run_k, run_kw, run_key, run_d2_far, run_d2, alt, pix);
             set_slot_lods(r, run_k, run_kw, run_key, alt, pix,
                    log2f(row_footprint(run_d2_far, alt, pix) * RUN_LOD_ROW_MEAN),
@@ -325,7 +324,6 @@ static void draw_runs(struct renderer *r, const struct camera *cam, mat4 world_t
 int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s, int width,
                    int height, struct swell_err *err)
 {
-    mat4 view, proj, world_to_clip;
     /* The camera floats CAMERA_CLEARANCE_M above the surface the renderer draws under it (the
      * same displacement, sea.h), so no view is from under the water; the projected grid's
      * coverage argument (grid.c) rests on it. */
@@ -338,21 +336,19 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
         r->camera_raise_m = cam_local.surface_z_m + CAMERA_CLEARANCE_M - cam_local.pos[2];
         cam_local.pos[2] = cam_local.surface_z_m + CAMERA_CLEARANCE_M;
     }
-    float aspect = height > 0 ? (float)width / (float)height : 1.0f;
     GLint depth_bits = 0;
     int nidx;
     size_t vbytes = sizeof(float) * (r->cpu_vterms ? VSHADE_FLOATS : GRID_FLOATS) *
                     (size_t)grid_vertex_count(r->grid);
-    camera_view_rel(cam, view);
-    camera_projection(cam, aspect, proj);
-    glm_mat4_mul(proj, view, world_to_clip);
+    struct camera_frame view;
+    camera_frame_make(cam, width, height, &view);
     stream_textures(r, t_s);
-    vertex_frame(r, cam, height);   /* after the slots' constants of this loop phase */
+    vertex_frame(r, &view);   /* after the slots' constants of this loop phase */
     if (r->vtf) {
-        nidx = grid_projection(r->grid, cam, aspect, &r->proj);
+        nidx = grid_projection(r->grid, &view, &r->proj);
         stream_disp(r, t_s);
     } else {
-        nidx = grid_update(r->grid, cam, aspect, t_s, r->verts);
+        nidx = grid_update(r->grid, &view, t_s, r->verts);
         if (nidx > 0 && r->cpu_vterms)   /* the terms of each vertex, on the CPU (vshade.h) */
             vshade_fill(&r->vf, r->verts, grid_vertex_count(r->grid), r->shaded);
     }
@@ -374,7 +370,7 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
     glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
     int rc;
     if (!r->d.no_sky && !r->d.debug_variants && r->probing != 1 &&
-        (rc = draw_sky(r, cam, world_to_clip, width, height, err)))
+        (rc = draw_sky(r, &view, err)))
         return rc;
     if (nidx > 0 && r->probing != 2) {
         /* Rows are ordered far to near, so without a depth buffer the painter's order holds. */
@@ -413,7 +409,7 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
             glEnable(GL_BLEND);
             glBlendFunc(GL_ZERO, GL_CONSTANT_COLOR);
         }
-        draw_runs(r, cam, world_to_clip, height);
+        draw_runs(r, &view);
         glDisable(GL_BLEND);
         for (int a = 0; a < A_COUNT; a++)
             glDisableVertexAttribArray((GLuint)a);

@@ -257,8 +257,7 @@ int upload_single(GLuint tex, int w, int h, const uint8_t *data, const char *wha
                   struct swell_err *err);
 
 /* sky_draw.c */
-int draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
-             int width, int height, struct swell_err *err);
+int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_err *err);
 int sky_atlas_at(int size, int l, int *x, int *y);
 int create_sky_mesh(struct renderer *r, struct swell_err *err);
 void update_sky_constants(struct renderer *r);

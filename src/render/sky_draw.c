@@ -131,9 +131,12 @@ static int update_sky_view(struct renderer *r, double alt_m, struct swell_err *e
 
 /* The sky is drawn only above the horizon (a scissor from just below the horizon's row up):
  * below it the sea covers every pixel, and a full-screen sky pass there was pure overdraw. */
-int draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
-             int width, int height, struct swell_err *err)
+int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_err *err)
 {
+    const struct camera *cam = &view->cam;
+    int width = view->width, height = view->height;
+    mat4 world_to_clip;
+    glm_mat4_copy((vec4 *)view->world_to_clip, world_to_clip);
     mat4 inv;
     float h = cam->heading_deg * (float)(M_PI / 180.0);
     /* the sphere's horizon, a circle acos(R / (R + alt)) below the level (camera.h): its lowest
@@ -186,8 +189,7 @@ int draw_sky(struct renderer *r, const struct camera *cam, mat4 world_to_clip,
     glm_mat4_mulv(world_to_clip, dir, clip);
     if (sd[2] > 0.0f && clip[3] > 0.0f) {
         float sun_disp[3];
-        mat4 proj;
-        camera_projection(cam, height > 0 ? (float)width / (float)height : 1.0f, proj);
+        const vec4 *proj = view->proj;
         /* radius: the disc's angle times the projection's scale (small-angle, near the axis) */
         float ndc[4] = { clip[0] / clip[3], clip[1] / clip[3], SUN_RADIUS_RAD * proj[0][0],
                          SUN_RADIUS_RAD * proj[1][1] };

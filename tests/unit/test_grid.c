@@ -75,7 +75,9 @@ static void test_projected_grid_hits_its_rays(void **state)
     c.pos[2] = 20.0;
     c.heading_deg = 70.0f;
     c.pitch_deg = -35.0f;
-    assert_true(grid_update(g, &c, aspect, 1.0, verts) > 0);
+    struct camera_frame view;
+    camera_frame_make(&c, 1280, 720, &view);     /* aspect 16:9 */
+    assert_true(grid_update(g, &view, 1.0, verts) > 0);
     camera_view_rel(&c, v);
     camera_projection(&c, aspect, p);
     glm_mat4_mul(p, v, vp);

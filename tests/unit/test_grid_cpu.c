@@ -18,6 +18,14 @@
 #include "geometry/sea.h"
 #include "tables/stream.h"
 
+/* The camera's frame at 1280 x 720 (aspect 16:9), as renderer_frame makes it. */
+static const struct camera_frame *frame_of(const struct camera *c)
+{
+    static struct camera_frame view;
+    camera_frame_make(c, 1280, 720, &view);
+    return &view;
+}
+
 #define F 4
 
 static uint32_t rng = 12345u;
@@ -260,7 +268,7 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
         c.heading_deg = heading[ti];
         struct stream_phase ph[2];
         float off[2][2];
-        assert_true(grid_update(g, &c, 16.0f / 9.0f, t_s, verts) > 0);
+        assert_true(grid_update(g, frame_of(&c), t_s, verts) > 0);
         for (int i = 0; i < 2; i++) {
             stream_loop_phase(t_s, tables_pattern_period(&s, i), F, &ph[i]);
             grid_uv_offset(&s, i, &c, off[i]);
@@ -427,10 +435,10 @@ static void test_projection_against_reference(void **state)
             c.pos[2] = alt[ci];
             c.heading_deg = 33.0f;
             c.pitch_deg = pitch[ci];
-            assert_true(grid_update(g, &c, 16.0f / 9.0f, 1.25, verts) > 0);
+            assert_true(grid_update(g, frame_of(&c), 1.25, verts) > 0);
             /* grid_projection fills the frame (its own row distances are overwritten below) */
-            assert_true(grid_projection(g, &c, 16.0f / 9.0f, &p) > 0);
-            assert_true(grid_update(g, &c, 16.0f / 9.0f, 1.25, verts) > 0);
+            assert_true(grid_projection(g, frame_of(&c), &p) > 0);
+            assert_true(grid_update(g, frame_of(&c), 1.25, verts) > 0);
             for (int j = 0; j < h; j++)
                 for (int i = 0; i < w; i++) {
                     const float *vx = verts + (size_t)(j * w + i) * GRID_FLOATS;
@@ -492,7 +500,7 @@ static void test_patches(void **state)
     c.pos[0] = 321.5;
     c.pos[1] = -99.0;
     c.pos[2] = 6.0;
-    assert_true(grid_update(g, &c, 16.0f / 9.0f, 0.6, verts) > 0);
+    assert_true(grid_update(g, frame_of(&c), 0.6, verts) > 0);
     for (int k = 0; k < grid_vertex_count(g); k++) {
         const float *vx = verts + (size_t)k * GRID_FLOATS;
         for (int a = 0; a < GRID_FLOATS; a++)
@@ -546,7 +554,7 @@ static void check_sea_query(int detile)
     double t = 2.7, lam_min = INFINITY, worst = 0.0, worst_h = 0.0;
     for (int i = 0; i < s.patterns; i++)
         lam_min = fmin(lam_min, grid_band_wavelength(&s.pattern[i]));
-    assert_true(grid_update(g, &c, 16.0f / 9.0f, t, verts) > 0);
+    assert_true(grid_update(g, frame_of(&c), t, verts) > 0);
     int w = 96, h = 64, checked = 0, off_h = 0;
     for (int j = 0; j + 1 < h; j++)
         for (int i = 0; i + 1 < w; i++) {
