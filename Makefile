@@ -27,7 +27,7 @@ WARN := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Werror=implicit-function-
         -Wno-unused-parameter
 SANFLAGS := $(if $(SAN),-fsanitize=$(SAN) -fno-omit-frame-pointer -fno-sanitize-recover=all,)
 CFLAGS ?= -g
-ALL_CFLAGS = $(WARN) $(OPT) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -Isrc -I$(BUILD)/gen -MMD -MP
+ALL_CFLAGS = $(WARN) $(OPT) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -Iinclude -Isrc -I$(BUILD)/gen -MMD -MP
 LDLIBS_ALL = $(PKG_LIBS) -lm -lpthread
 
 # src/<layer>/<module>.c (docs/architecture.md); the two programs' mains are in src/app

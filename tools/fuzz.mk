@@ -26,7 +26,7 @@ FUZZ_LIB_SRC := $(addprefix src/core/,datadir.c err.c fsutil.c kv.c preset.c sea
                 $(addprefix src/tables/,ktx.c tables.c tables_io.c)
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Wno-unused-parameter -O1 -g \
-               $(FUZZ_SAN) -Isrc -I$(BUILD)/gen -Itests/fuzz
+               $(FUZZ_SAN) -Iinclude -Isrc -I$(BUILD)/gen -Itests/fuzz
 FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:src/%.c=$(FUZZ_BUILD)/obj/%.o)
 FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/%)
 

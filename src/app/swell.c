@@ -16,7 +16,7 @@
 #include "app/bench.h"
 #include "core/args.h"
 #include "core/datadir.h"
-#include "core/version.h"
+#include "swell.h"
 #include "core/camera.h"
 #include "gl/gpu.h"
 #include "core/image.h"
@@ -190,7 +190,7 @@ static int parse_args(int argc, char **argv, struct options *o)
             exit(0);
         }
         if (k == ARGS_VERSION) {
-            printf("swell " SWELL_VERSION "\n");
+            printf("swell " SWELL_VERSION_STRING "\n");
             exit(0);
         }
         if (!strcmp(a, "--verbose")) {

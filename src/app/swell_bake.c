@@ -17,7 +17,7 @@
 #include "bake/bake.h"
 #include "core/args.h"
 #include "core/datadir.h"
-#include "core/version.h"
+#include "swell.h"
 #include "core/fsutil.h"
 #include "core/parse.h"
 #include "core/preset.h"
@@ -99,7 +99,7 @@ static int parse_args(int argc, char **argv, struct options *o)
             exit(0);
         }
         if (k == ARGS_VERSION) {
-            printf("swell-bake " SWELL_VERSION "\n");
+            printf("swell-bake " SWELL_VERSION_STRING "\n");
             exit(0);
         }
         if (!strcmp(a, "--quiet")) o->quiet = 1;
@@ -162,7 +162,7 @@ static int write_report(const char *path, const struct swell_tables *t, double s
     uint64_t tb = tables_bytes(t);
     uint64_t resident = bake_resident_bytes(t->patterns, t->state.size_fs);
 #define OUT(...) len += (size_t)snprintf(buf + len, len < cap ? cap - len : 0, __VA_ARGS__)
-    OUT("{\n  \"generator\": \"swell-bake " SWELL_VERSION "\",\n");
+    OUT("{\n  \"generator\": \"swell-bake " SWELL_VERSION_STRING "\",\n");
     OUT("  \"wind_speed_mps\": %.9g,\n  \"spectrum\": \"%s\",\n", t->state.wind_speed_mps,
         spectrum_name(t->state.spectrum));
     OUT("  \"hs_m\": %.9g,\n", t->hs_m);

@@ -120,6 +120,11 @@ int grid_mip_level(float r, int levels);
  * variance). */
 int grid_k_flat_level(const struct swell_table *wc);
 
+/* Bruneton eq. 2's bounds: waves shorter than Nmin cells are cancelled, kept in full from
+ * Nmax cells up (the grid's cells; the CPU query's low-pass, sea.h). */
+#define GRID_FILTER_NMIN 2.0f
+#define GRID_FILTER_NMAX 4.0f
+
 /* Bruneton 2010 eq. 2 filter weight w(a, b, x) = 3 x'^2 - 2 x'^3, x' = clamp((x-a)/(b-a)). */
 float grid_filter_weight(float a, float b, float x);
 

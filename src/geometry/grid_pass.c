@@ -9,8 +9,6 @@
 #include <string.h>
 #include "geometry/grid_internal.h"
 
-#define FILTER_NMIN 2.0f      /* Bruneton eq. 2: waves shorter than Nmin cells are cancelled... */
-#define FILTER_NMAX 4.0f      /* ...and kept in full from Nmax cells up */
 #define COORD_MAX 1073741824.0f  /* 2^30: float texel coordinates are clamped to +-COORD_MAX */
 
 /* One frame's constants of a pattern's lattice (detile.h): a rest point's cell coordinates are
@@ -123,7 +121,7 @@ static void disp_coords(const struct disp_frame *f, int nr, const int *restrict 
             for (int e = q; e < q + 4; e++) {
                 float ft = foot[e];
                 ft = ft > ft_lo ? ft : ft_lo;
-                float u = (lambda_m / ft - FILTER_NMIN) * (1.0f / (FILTER_NMAX - FILTER_NMIN));
+                float u = (lambda_m / ft - GRID_FILTER_NMIN) * (1.0f / (GRID_FILTER_NMAX - GRID_FILTER_NMIN));
                 u = u > u_lo ? u : u_lo;
                 u = u < u_hi ? u : u_hi;
                 wv[e] = fade[e] * (u * u * (3.0f - 2.0f * u));
@@ -521,7 +519,7 @@ int grid_update(struct grid *g, const struct camera_frame *view, double t_s, flo
         float o[2];
         /* eq. 2's weight is 0 for every vertex when it is 0 at the smallest wet footprint (the
          * float expressions are monotonic in the footprint) */
-        int disp_on = p->lambda_m / foot_lo > FILTER_NMIN;
+        int disp_on = p->lambda_m / foot_lo > GRID_FILTER_NMIN;
         if (!disp_on && !p->cpu && !p->kcpu)
             continue;
         grid_uv_offset(g->t, i, cam, o);
@@ -536,7 +534,7 @@ int grid_update(struct grid *g, const struct camera_frame *view, double t_s, flo
             detile_frame_set(&d->dt, g->detile ? g->hash : NULL, i, p->inv_l, cam);
             /* a block is skipped from a hair above lambda / Nmin, where the weight is 0 (the
              * exact per-vertex weight decides the rest) */
-            d->foot_zero = p->lambda_m / FILTER_NMIN * (1.0f + 1e-5f);
+            d->foot_zero = p->lambda_m / GRID_FILTER_NMIN * (1.0f + 1e-5f);
             d->kx = (float)(p->inv_l * nx);
             d->ky = (float)(p->inv_l * ny);
             d->x0 = (float)((double)o[0] * nx - 0.5);

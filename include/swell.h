@@ -1,0 +1,197 @@
+/* swell.h - the ocean renderer swell as a C library: bake or load a sea, ask it for the water
+ * under a point on the CPU, and draw it with OpenGL ES 2 into the application's own context.
+ * C99; needs only <stddef.h> and <stdint.h>. Link with `pkg-config --cflags --libs swell`.
+ *
+ * Conventions, for every function:
+ *   - World axes: x east, y north, z up, right-handed; metres, seconds, degrees where named _deg.
+ *   - Descriptors: a zeroed descriptor asks for every default; each field's default is stated.
+ *   - Errors: a function that can fail returns 0 (SWELL_OK) or a SWELL_E_* code and, when `err`
+ *     is not NULL, fills it with a message that says what was wrong and what to do. Nothing is
+ *     printed. On failure no output handle is created and nothing is half-written.
+ *   - Threads: a swell_sea is immutable once made; swell_sea_sample may run on many threads at
+ *     once on one sea. A swell_ocean belongs to the GL context current when it was created and
+ *     is used from that context's thread only.
+ *   - Symbols: everything the library exports starts with swell_ (types, functions, macros
+ *     SWELL_).
+ *
+ * Papers: Hu et al. 2006 (looping tables), Bruneton et al. 2010 (projected grid, lighting),
+ * Dupuy & Bruneton 2012 (whitecaps), Tessendorf et al. 2023 (whitecap fraction).
+ */
+#ifndef SWELL_H
+#define SWELL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SWELL_VERSION_MAJOR 0
+#define SWELL_VERSION_MINOR 2
+#define SWELL_VERSION_PATCH 0
+#define SWELL_VERSION_STRING "0.2.0"
+/* (major << 16) | (minor << 8) | patch, comparable with swell_version() */
+#define SWELL_VERSION_NUMBER \
+    ((SWELL_VERSION_MAJOR << 16) | (SWELL_VERSION_MINOR << 8) | SWELL_VERSION_PATCH)
+
+#if defined(__GNUC__) || defined(__clang__)
+#define SWELL_API __attribute__((visibility("default")))
+#else
+#define SWELL_API
+#endif
+
+/* ---- errors ---------------------------------------------------------------------------- */
+
+enum swell_error_code {
+    SWELL_OK = 0,
+    SWELL_E_NOMEM,          /* out of memory */
+    SWELL_E_ARG,            /* invalid argument: a value out of its range, a NULL handle */
+    SWELL_E_IO,             /* a file could not be read or written */
+    SWELL_E_FORMAT,         /* a file is malformed */
+    SWELL_E_VERSION,        /* a file's version is not supported */
+    SWELL_E_CHECKSUM,       /* a file's checksum does not match: corrupt */
+    SWELL_E_BUDGET,         /* the GPU memory budget is too small for the request */
+    SWELL_E_FFT,            /* the FFT library failed */
+    SWELL_E_EGL,            /* EGL failed */
+    SWELL_E_GL,             /* OpenGL ES failed */
+    SWELL_E_SHADER,         /* a shader did not compile or link */
+    SWELL_E_TIER,           /* the GL context lacks what the lowest tier needs */
+    SWELL_E_DRM,            /* DRM/KMS failed */
+    SWELL_E_UNSUPPORTED,    /* not supported (yet) */
+    SWELL_ERR_COUNT
+};
+
+struct swell_err {
+    int code;               /* SWELL_OK or a SWELL_E_* value */
+    char msg[1024];         /* the specific message; "" when code is SWELL_OK */
+};
+
+/* A short generic text for a code ("checksum mismatch"); never NULL. */
+SWELL_API const char *swell_err_name(int code);
+/* SWELL_VERSION_NUMBER of the library linked at run time. */
+SWELL_API uint32_t swell_version(void);
+
+/* ---- the sea: baked tables ------------------------------------------------------------- */
+
+typedef struct swell_sea swell_sea;
+
+typedef struct swell_sea_desc {
+    const char *preset;         /* NULL, or a preset applied first: "calm", "moderate",
+                                 * "rough", "storm" (swell-bake --help), or a .preset path */
+    float wind_speed_mps;       /* U10 wind speed, m/s, 0.5..40; 0 = the preset's or 10 */
+    float wind_dir_deg;         /* direction the wind blows towards, CCW from east; 0 = east */
+    float fetch_km;             /* fetch, km, 0.1..10000; 0 = the preset's or 100 */
+    float depth_m;              /* water depth, m, 1..10000; 0 = deep water */
+    uint32_t seed;              /* random seed; 0 = the preset's or 1 */
+    uint64_t budget_bytes;      /* GPU memory the tables and the renderer may take, bytes,
+                                 * 1 MiB..1 GiB; 0 = the preset's or 16 MiB */
+} swell_sea_desc;
+
+/* Bake a sea from a sea state (about a second on one core for the default budget). */
+SWELL_API int swell_sea_bake(const swell_sea_desc *desc, swell_sea **out, struct swell_err *err);
+/* Load tables baked by swell-bake (or swell_sea_save) from a directory. */
+SWELL_API int swell_sea_load(const char *dir, swell_sea **out, struct swell_err *err);
+/* Write the sea's tables to a directory, atomically (a reader sees the old set or the new). */
+SWELL_API int swell_sea_save(const swell_sea *sea, const char *dir, struct swell_err *err);
+SWELL_API void swell_sea_destroy(swell_sea *sea);
+
+typedef struct swell_sea_info {
+    float wind_speed_mps;       /* the sea state's */
+    float significant_height_m; /* Hs = 4 sqrt(variance of the height), m */
+    float loop_period_s;        /* every table repeats after this many seconds */
+    int patterns;               /* wave patterns of different sizes (Dupuy 2012) */
+    float pattern_size_m[4];    /* each pattern's tile side, m */
+    uint64_t table_bytes;       /* bytes of all tables */
+} swell_sea_info;
+SWELL_API void swell_sea_get_info(const swell_sea *sea, swell_sea_info *out);
+
+/* ---- the sea on the CPU ---------------------------------------------------------------- */
+
+typedef struct swell_sample_desc {
+    double min_wavelength_m;    /* 0: every wave the tables hold; else waves shorter than this
+                                 * fade out (Bruneton 2010 eq. 2's weight, waves of 1 to 2 x
+                                 * this blended), so a hull of that size is not shaken by
+                                 * ripples */
+    int no_detile;              /* 1: the patterns read once, at no offset, as an ocean made
+                                 * with swell_ocean_desc detile SWELL_DETILE_OFF draws them
+                                 * (the default, 0, matches the default high quality) */
+} swell_sample_desc;
+
+typedef struct swell_sample {
+    double height_m;            /* height of the water surface above (x, y), m */
+    double displacement[3];     /* (Dx, Dy, Dz) of the rest point that moves to above (x, y):
+                                 * the choppy waves move water sideways, m */
+    float normal[3];            /* unit normal of the displaced surface there */
+    float velocity[3];          /* velocity of that water, m/s */
+} swell_sample;
+
+/* The water above n points xy[2 i], xy[2 i + 1] at time t_s: the surface the renderer draws
+ * (the same tables, loop frames blended at the same phase, the same bilinear filtering), at
+ * full detail where the desc asks none (desc may be NULL). Thread-safe. Equal at t_s and
+ * t_s + the loop period. */
+SWELL_API int swell_sea_sample(const swell_sea *sea, const swell_sample_desc *desc,
+                               const double *xy, size_t n, double t_s, swell_sample *out,
+                               struct swell_err *err);
+
+/* ---- the ocean on the GPU -------------------------------------------------------------- */
+
+typedef struct swell_ocean swell_ocean;
+
+enum swell_quality { SWELL_QUALITY_HIGH = 0, SWELL_QUALITY_LOW };
+enum swell_geometry { SWELL_GEOMETRY_GRID = 0, SWELL_GEOMETRY_PATCHES };
+enum swell_detile { SWELL_DETILE_AUTO = 0, SWELL_DETILE_ON, SWELL_DETILE_OFF };
+enum swell_tier { SWELL_TIER_BEST = 0, SWELL_TIER_GLES2_MIN, SWELL_TIER_GLES2_EXT, SWELL_TIER_GLES3 };
+
+typedef struct swell_ocean_desc {
+    int quality;                /* enum swell_quality; default HIGH (LOW: Hu's single pass for
+                                 * the weakest GPUs) */
+    int geometry;               /* enum swell_geometry; default GRID (Bruneton's projected grid) */
+    int tier;                   /* enum swell_tier: the highest tier to use; default the best the
+                                 * context offers */
+    int detile;                 /* enum swell_detile; default AUTO (on in high quality) */
+    float sun_elev_deg;         /* sun elevation above the horizon, (0, 90]; default 30 */
+    float sun_azim_deg;         /* sun azimuth, CCW from east; default 0 */
+    const char *shader_dir;     /* NULL: the installed shaders ($SWELL_DATA_DIR overrides) */
+} swell_ocean_desc;
+
+/* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
+ * later). The sea must outlive the ocean. Compiles the shaders and probes which the driver
+ * runs; a program the driver refuses is replaced by one fetching less, never by no sea. */
+SWELL_API int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc,
+                                 swell_ocean **out, struct swell_err *err);
+
+/* Flags of swell_view: what a draw does besides the sea. */
+enum swell_draw_flags {
+    SWELL_DRAW_CLEAR = 1,       /* clear colour and depth of the viewport first */
+    SWELL_DRAW_SKY = 2          /* draw the sky behind the sea (else the sea alone) */
+};
+
+typedef struct swell_view {
+    double camera_pos[3];       /* the eye in world coordinates, m (double: a sea of any size;
+                                 * the renderer works relative to it) */
+    float view[16];             /* world-to-eye, column-major as glUniformMatrix4fv takes it;
+                                 * its translation is ignored (the eye is camera_pos). Roll is
+                                 * not supported yet: the eye's x axis must be level */
+    float proj[16];             /* eye-to-clip, column-major: a symmetric perspective, NDC z in
+                                 * [-1, 1] (as gluPerspective or glm_perspective build it); the
+                                 * sea ends at 0.9 x its far plane */
+    int viewport[4];            /* x, y, width, height in pixels of the bound framebuffer */
+    unsigned flags;             /* enum swell_draw_flags */
+} swell_view;
+
+/* Draw the sea at time t_s into the framebuffer bound now. GL state: swell sets what it needs
+ * (programs, buffers, textures on units 0..7 and up, blend off, depth test and write on,
+ * culling off, the viewport) and leaves them changed; save what you rely on. */
+SWELL_API int swell_ocean_draw(swell_ocean *ocean, const swell_view *view, double t_s,
+                               struct swell_err *err);
+/* Move the sun (re-bakes the sky map: not for every frame). */
+SWELL_API int swell_ocean_set_sun(swell_ocean *ocean, float elev_deg, float azim_deg,
+                                  struct swell_err *err);
+SWELL_API void swell_ocean_destroy(swell_ocean *ocean);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
