@@ -1,6 +1,7 @@
 /* platform_surfaceless.c - offscreen back-end: EGL_MESA_platform_surfaceless display, a GLES
  * context made current with no surface (EGL_KHR_surfaceless_context), and an FBO as the frame.
  * Needs no display, no window system and no DRM master: tests and batch PNG output use it.
+ * The EGL calls themselves are egl.c's, shared with the KMS back-end.
  */
 #include "platform/platform.h"
 
@@ -13,30 +14,24 @@
 #include <GLES2/gl2ext.h>
 
 #include "core/parse.h"
+#include "platform/egl.h"
 
 #define DEFAULT_WIDTH 1280
 #define DEFAULT_HEIGHT 720
 
 struct platform {
     int width, height;
-    EGLDisplay dpy;
-    EGLContext ctx;
+    struct egl egl;             /* display and context; no surface */
     GLuint fbo, color_rb, color_tex, depth_rb;
     uint8_t *row;               /* one row, for the vertical flip in read_rgba */
 };
-
-static int egl_fail(struct swell_err *err, const char *what, const char *hint)
-{
-    return swell_fail(err, SWELL_E_EGL, "platform surfaceless: %s failed (EGL error 0x%04x)%s%s",
-                      what, (unsigned)eglGetError(), hint ? "; " : "", hint ? hint : "");
-}
 
 static void sl_destroy(struct platform *p)
 {
     if (!p)
         return;
-    if (p->dpy != EGL_NO_DISPLAY && p->ctx != EGL_NO_CONTEXT &&
-        eglGetCurrentContext() == p->ctx) {
+    if (p->egl.dpy != EGL_NO_DISPLAY && p->egl.ctx != EGL_NO_CONTEXT &&
+        eglGetCurrentContext() == p->egl.ctx) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         if (p->fbo)
             glDeleteFramebuffers(1, &p->fbo);
@@ -47,12 +42,7 @@ static void sl_destroy(struct platform *p)
         if (p->depth_rb)
             glDeleteRenderbuffers(1, &p->depth_rb);
     }
-    if (p->dpy != EGL_NO_DISPLAY) {
-        eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        if (p->ctx != EGL_NO_CONTEXT)
-            eglDestroyContext(p->dpy, p->ctx);
-        eglTerminate(p->dpy);
-    }
+    egl_destroy(&p->egl);
     free(p->row);
     free(p);
 }
@@ -68,22 +58,20 @@ static int open_display(struct platform *p, struct swell_err *err)
         return swell_fail(err, SWELL_E_UNSUPPORTED, "platform surfaceless: EGL lacks "
                           "EGL_EXT_platform_base or EGL_MESA_platform_surfaceless (client "
                           "extensions: %.600s); install Mesa's libEGL", client);
-    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
-        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    if (!get_display)
-        return swell_fail(err, SWELL_E_UNSUPPORTED, "platform surfaceless: "
-                          "eglGetPlatformDisplayEXT is advertised but not loadable");
-    p->dpy = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    if (p->dpy == EGL_NO_DISPLAY)
-        return egl_fail(err, "eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)", NULL);
-    EGLint major = 0, minor = 0;
-    if (!eglInitialize(p->dpy, &major, &minor)) {
-        int rc = egl_fail(err, "eglInitialize", "is there a render node (/dev/dri/renderD*) "
-                          "or Mesa's software rasteriser (llvmpipe)?");
-        p->dpy = EGL_NO_DISPLAY;
+    const struct egl_display_desc dd = {
+        .platform = EGL_PLATFORM_SURFACELESS_MESA,
+        .platform_name = "EGL_PLATFORM_SURFACELESS_MESA",
+        .native = EGL_DEFAULT_DISPLAY,
+        .no_entry_code = SWELL_E_UNSUPPORTED,
+        .no_entry_msg = "eglGetPlatformDisplayEXT is advertised but not loadable",
+        .init_what = "eglInitialize",
+        .init_hint = "is there a render node (/dev/dri/renderD*) or Mesa's software rasteriser "
+                     "(llvmpipe)?",
+    };
+    int rc = egl_open_display(&p->egl, &dd, err);
+    if (rc)
         return rc;
-    }
-    const char *exts = eglQueryString(p->dpy, EGL_EXTENSIONS);
+    const char *exts = eglQueryString(p->egl.dpy, EGL_EXTENSIONS);
     if (!parse_has_token(exts, "EGL_KHR_surfaceless_context"))
         return swell_fail(err, SWELL_E_UNSUPPORTED, "platform surfaceless: the display lacks "
                           "EGL_KHR_surfaceless_context");
@@ -92,8 +80,9 @@ static int open_display(struct platform *p, struct swell_err *err)
 
 static int create_context(struct platform *p, int gles_major, struct swell_err *err)
 {
-    if (!eglBindAPI(EGL_OPENGL_ES_API))
-        return egl_fail(err, "eglBindAPI(EGL_OPENGL_ES_API)", NULL);
+    int rc = egl_bind_gles(&p->egl, err);
+    if (rc)
+        return rc;
     /* GLES 3 first when asked, then GLES 2 (platform.h: 3 falls back to 2). */
     for (int major = gles_major; major >= 2; major--) {
         const EGLint config_attrs[] = {
@@ -104,18 +93,16 @@ static int create_context(struct platform *p, int gles_major, struct swell_err *
         };
         EGLConfig config;
         EGLint n = 0;
-        if (!eglChooseConfig(p->dpy, config_attrs, &config, 1, &n) || n < 1)
+        if (!eglChooseConfig(p->egl.dpy, config_attrs, &config, 1, &n) || n < 1)
             continue;
-        const EGLint ctx_attrs[] = { EGL_CONTEXT_CLIENT_VERSION, major, EGL_NONE };
-        p->ctx = eglCreateContext(p->dpy, config, EGL_NO_CONTEXT, ctx_attrs);
-        if (p->ctx != EGL_NO_CONTEXT)
+        p->egl.config = config;
+        if (egl_try_context(&p->egl, major))
             break;
     }
-    if (p->ctx == EGL_NO_CONTEXT)
-        return egl_fail(err, "eglCreateContext (GLES 2 and 3)", "no GLES config on this display");
-    if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, p->ctx))
-        return egl_fail(err, "eglMakeCurrent(EGL_NO_SURFACE)", NULL);
-    return SWELL_OK;
+    if (p->egl.ctx == EGL_NO_CONTEXT)
+        return egl_fail(&p->egl, err, "eglCreateContext (GLES 2 and 3)",
+                        "no GLES config on this display");
+    return egl_make_current(&p->egl, err);
 }
 
 static int create_fbo(struct platform *p, struct swell_err *err)
@@ -173,8 +160,7 @@ static int sl_create(const struct platform_desc *d, struct platform **out, struc
         return swell_fail(err, SWELL_E_NOMEM, "platform surfaceless: no memory for the state");
     p->width = w;
     p->height = h;
-    p->dpy = EGL_NO_DISPLAY;
-    p->ctx = EGL_NO_CONTEXT;
+    egl_init(&p->egl, "platform surfaceless");
     int rc = SWELL_OK;
     p->row = malloc((size_t)w * 4);
     if (!p->row) {
