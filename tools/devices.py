@@ -409,7 +409,7 @@ def run(args):
                             model["name"], r["tier"], quality, r["program"], r["stage"],
                             [k for k, _ in pr])))
                 all_records += recs
-                m = re.findall(r"trying --quality (\S+)", text)
+                m = re.findall(r"trying (?:--)?quality (\S+)", text)
                 drew = "none" if rc != 0 else (m[-1] if m else quality)
                 # the build drawn: with or without the lattice (the retry of --detile auto),
                 # and its fallbacks

@@ -379,6 +379,18 @@ static void fps_tick(struct fps_meter *m, double now)
     m->frames = 0;
 }
 
+/* renderer_open's fallbacks, told on stderr (what was refused and what is tried instead). */
+static void note_fallback(void *user, const char *msg)
+{
+    const char *p = msg;
+    while (*p) {
+        const char *nl = strchr(p, '\n');
+        int n = nl ? (int)(nl - p) : (int)strlen(p);
+        fprintf(stderr, "swell: %.*s\n", n, p);
+        p += n + (nl ? 1 : 0);
+    }
+}
+
 static int load_tables(struct options *o, struct swell_tables *t, struct swell_err *err)
 {
     if (o->tables_dir) {
@@ -631,43 +643,17 @@ int main(int argc, char **argv)
     if (platform_open(&o.platform, &ph, &err))
         goto fail_tables;
     uint64_t budget = o.budget ? o.budget : tables.state.budget_bytes;
-    if (gpu_init(&gpu, o.tier, budget, &err))
-        goto fail_platform;
     struct renderer_desc rd = {
-        .tables = &tables, .gpu = &gpu, .quality = o.quality, .geometry = o.geometry,
+        .tables = &tables, .quality = o.quality, .geometry = o.geometry,
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
         .debug_variants = o.debug_variants,
         .detile = o.detile,
     };
-    rc = renderer_create(&rd, &r, &err);
-    if (rc == SWELL_E_SHADER && o.tier < 0 && gpu.caps.tier != TIER_GLES2_MIN) {
-        /* the tier swell chose runs none of this quality's programs (VideoCore IV: vc4
-         * cannot allocate registers for any high-quality vertex shader that fetches the
-         * displacement): the same quality on gles2-min, whose vertex shaders are smaller
-         * (the CPU displaces the grid), before the other quality */
-        fprintf(stderr, "swell: %s\nswell: %s quality does not run on tier %s here; trying "
-                "--tier gles2-min\n", err.msg, render_quality_name(rd.quality),
-                gpu_tier_name(gpu.caps.tier));
-        gpu_shutdown(&gpu);
-        memset(&gpu, 0, sizeof gpu);
-        if (gpu_init(&gpu, TIER_GLES2_MIN, budget, &err))
-            goto fail_platform;
-        rc = renderer_create(&rd, &r, &err);
-    }
-    if (rc == SWELL_E_SHADER) {
-        /* the driver runs no ocean program of this quality (renderer.c probe_programs): the
-         * same sea in the other rather than none (low's vertex shader carries more of the
-         * shading, so either may be the one that fits) */
-        int other = rd.quality == QUALITY_HIGH ? QUALITY_LOW : QUALITY_HIGH;
-        fprintf(stderr, "swell: %s\nswell: %s quality does not run on this GPU; trying "
-                "--quality %s\n", err.msg, render_quality_name(rd.quality),
-                render_quality_name(other));
-        rd.quality = o.quality = other;
-        rc = renderer_create(&rd, &r, &err);
-    }
+    rc = renderer_open(&rd, &gpu, o.tier, budget, note_fallback, NULL, &r, &err);
+    o.quality = rd.quality;
     if (rc)
-        goto fail_gpu;
+        goto fail_platform;
     struct upscale up_store, *up = NULL;
     if (o.scale > 0 && o.scale < 1) {
         /* the output's framebuffer is bound here (the platform's; the probe restored it) */
@@ -690,7 +676,6 @@ fail_upscale:
         upscale_destroy(up);
 fail_renderer:
     renderer_destroy(r);
-fail_gpu:
     gpu_shutdown(&gpu);
 fail_platform:
     platform_close(&ph);

@@ -56,7 +56,7 @@ const char *camera_path_name(int path);
 struct camera_frame {
     struct camera cam;          /* as drawn (renderer_frame fills surface_z_m and keeps it
                                  * CAMERA_CLEARANCE_M above the sea) */
-    int width, height;          /* the viewport, pixels */
+    int x, y, width, height;    /* the viewport, pixels (camera_frame_make: 0, 0, w, h) */
     float aspect;               /* width / height (1 without a height) */
     float near_m, far_m;        /* camera_clip_planes */
     double fov_y_rad;           /* the vertical field of view, the default applied */

@@ -23,4 +23,26 @@ void sea_displacement(const struct swell_tables *t, int detile, double x, double
 double sea_surface_height(const struct swell_tables *t, int detile, double x, double y,
                           double t_s);
 
+/* A query of the water above a point, optionally low-passed: pattern i enters with weight[i],
+ * Bruneton eq. 2's weight of its band wavelength over cells of min_wavelength / GRID_FILTER_NMIN
+ * (1 for every pattern without a minimum), as the grid weighs what its cells cannot hold. */
+struct sea_query {
+    int detile;
+    float weight[SWELL_MAX_PATTERNS];
+};
+void sea_query_init(const struct swell_tables *t, int detile, double min_wavelength_m,
+                    struct sea_query *q);
+
+struct sea_point {
+    double height;              /* of the displaced surface above (x, y), m */
+    double disp[3];             /* displacement of the rest point that lands there, m */
+    double normal[3];           /* unit normal of the displaced surface there */
+    double velocity[3];         /* d/dt of that rest point's displacement, m/s: the loop
+                                 * frames' difference over their spacing (the drawn motion) */
+};
+/* The water above (x, y) at t_s: the rest point by sea_surface_height's inversion, the normal
+ * from central differences of the displaced surface over a quarter of the finest texel. */
+void sea_query_point(const struct swell_tables *t, const struct sea_query *q, double x, double y,
+                     double t_s, struct sea_point *out);
+
 #endif

@@ -324,6 +324,18 @@ static void draw_runs(struct renderer *r, const struct camera_frame *view)
 int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s, int width,
                    int height, struct swell_err *err)
 {
+    struct renderer_view v = {
+        .cam = *user_cam, .width = width, .height = height,
+        .flags = RENDERER_CLEAR | (r->d.no_sky ? 0 : RENDERER_SKY),
+    };
+    return renderer_draw(r, &v, t_s, err);
+}
+
+int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
+                  struct swell_err *err)
+{
+    const struct camera *user_cam = &v->cam;
+    int width = v->width, height = v->height;
     /* The camera floats CAMERA_CLEARANCE_M above the surface the renderer draws under it (the
      * same displacement, sea.h), so no view is from under the water; the projected grid's
      * coverage argument (grid.c) rests on it. */
@@ -342,6 +354,13 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
                     (size_t)grid_vertex_count(r->grid);
     struct camera_frame view;
     camera_frame_make(cam, width, height, &view);
+    view.x = v->x;
+    view.y = v->y;
+    if (v->proj) {      /* the application's projection, exactly (depth it can test against) */
+        memcpy(view.proj, v->proj, sizeof view.proj);
+        view.aspect = view.proj[1][1] / view.proj[0][0];
+        glm_mat4_mul(view.proj, view.view_rel, view.world_to_clip);
+    }
     stream_textures(r, t_s);
     vertex_frame(r, &view);   /* after the slots' constants of this loop phase */
     if (r->vtf) {
@@ -353,23 +372,28 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
             vshade_fill(&r->vf, r->verts, grid_vertex_count(r->grid), r->shaded);
     }
 
-    glViewport(0, 0, width, height);
+    glViewport(v->x, v->y, width, height);
     glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
-    if (r->probing)
-        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);   /* the probe counts what the sea writes */
-    else if (r->d.debug_variants)
-        glClearColor(1.0f, 1.0f, 1.0f, 1.0f);   /* variant_colour's white */
-    else if (r->d.debug_uncovered)
-        glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug */
-    else
-        glClearColor(0.02f, 0.05f, 0.07f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
+    if (v->flags & RENDERER_CLEAR) {
+        if (r->probing)
+            glClearColor(0.0f, 0.0f, 0.0f, 0.0f);   /* the probe counts what the sea writes */
+        else if (r->d.debug_variants)
+            glClearColor(1.0f, 1.0f, 1.0f, 1.0f);   /* variant_colour's white */
+        else if (r->d.debug_uncovered)
+            glClearColor(1.0f, 0.0f, 1.0f, 1.0f);   /* magenta: any pixel left is a bug */
+        else
+            glClearColor(0.02f, 0.05f, 0.07f, 1.0f);
+        glEnable(GL_SCISSOR_TEST);   /* the viewport alone: an application's frame keeps the rest */
+        glScissor(v->x, v->y, width, height);
+        glClear(GL_COLOR_BUFFER_BIT | (depth_bits > 0 ? GL_DEPTH_BUFFER_BIT : 0));
+        glDisable(GL_SCISSOR_TEST);
+    }
     int rc;
-    if (!r->d.no_sky && !r->d.debug_variants && r->probing != 1 &&
+    if ((v->flags & RENDERER_SKY) && !r->d.debug_variants && r->probing != 1 &&
         (rc = draw_sky(r, &view, err)))
         return rc;
     if (nidx > 0 && r->probing != 2) {

@@ -366,3 +366,47 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                  "probe's names), %d refused\n", render_quality_name(r->d.quality),
                  program_tags(r), r->refused);
 }
+
+int renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uint64_t budget,
+                  void (*note)(void *user, const char *msg), void *user, struct renderer **out,
+                  struct swell_err *err)
+{
+    char msg[1400];
+    memset(gpu, 0, sizeof *gpu);
+    if (gpu_init(gpu, forced_tier, budget, err))
+        return err ? err->code : SWELL_E_GL;
+    d->gpu = gpu;
+    int rc = renderer_create(d, out, err);
+    if (rc == SWELL_E_SHADER && forced_tier < 0 && gpu->caps.tier != TIER_GLES2_MIN) {
+        /* the tier chosen runs none of this quality's programs (VideoCore IV: vc4 cannot
+         * allocate registers for any high-quality vertex shader that fetches the
+         * displacement): the same quality on gles2-min, whose vertex shaders are smaller (the
+         * CPU displaces the grid), before the other quality */
+        snprintf(msg, sizeof msg, "%s\n%s quality does not run on tier %s here; trying tier "
+                 "gles2-min", err ? err->msg : "", render_quality_name(d->quality),
+                 gpu_tier_name(gpu->caps.tier));
+        if (note)
+            note(user, msg);
+        gpu_shutdown(gpu);
+        memset(gpu, 0, sizeof *gpu);
+        if (gpu_init(gpu, TIER_GLES2_MIN, budget, err))
+            return err ? err->code : SWELL_E_GL;
+        rc = renderer_create(d, out, err);
+    }
+    if (rc == SWELL_E_SHADER) {
+        /* the driver runs no ocean program of this quality (probe_programs): the same sea in
+         * the other rather than none (low's vertex shader carries more of the shading, so
+         * either may be the one that fits) */
+        int other = d->quality == QUALITY_HIGH ? QUALITY_LOW : QUALITY_HIGH;
+        snprintf(msg, sizeof msg, "%s\n%s quality does not run on this GPU; trying quality %s",
+                 err ? err->msg : "", render_quality_name(d->quality),
+                 render_quality_name(other));
+        if (note)
+            note(user, msg);
+        d->quality = other;
+        rc = renderer_create(d, out, err);
+    }
+    if (rc)
+        gpu_shutdown(gpu);
+    return rc;
+}

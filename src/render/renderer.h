@@ -99,11 +99,33 @@ struct renderer_stats {
 struct renderer;
 
 int  renderer_create(const struct renderer_desc *d, struct renderer **out, struct swell_err *err);
+/* gpu_init on the current context (forced_tier -1: the best) and renderer_create with the
+ * fallbacks a driver's refusal calls for, so a device gets a sea whenever any program runs:
+ * where no program of d->quality runs on the chosen tier, the same quality on gles2-min (its
+ * vertex shaders are smaller: VideoCore IV), then the other quality. note (may be NULL) hears
+ * each fallback taken; d->quality and d->gpu are updated. On failure gpu is shut down. */
+int  renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uint64_t budget,
+                   void (*note)(void *user, const char *msg), void *user, struct renderer **out,
+                   struct swell_err *err);
 /* Draw one frame at time t_s (s) into the framebuffer bound now, viewport width x height.
  * A camera less than CAMERA_CLEARANCE_M above the sea surface under it (the displaced
  * surface this frame draws) is drawn from that height above it instead. */
 int  renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
                     int height, struct swell_err *err);
+
+/* The same into an application's frame: its viewport, its projection, its choice of clearing
+ * (within the viewport only) and of the sky. renderer_frame is this with the viewport at 0, 0,
+ * the camera's own projection, a clear and the sky (unless desc no_sky). */
+enum { RENDERER_CLEAR = 1, RENDERER_SKY = 2 };
+struct renderer_view {
+    struct camera cam;                  /* position, heading, pitch, fov, clip planes */
+    int x, y, width, height;            /* the viewport, pixels */
+    const float *proj;                  /* NULL: from cam; else 16 floats, column-major, a
+                                         * symmetric perspective with cam's fov and planes */
+    unsigned flags;                     /* RENDERER_CLEAR | RENDERER_SKY */
+};
+int  renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
+                   struct swell_err *err);
 /* Move the sun (degrees above the horizon in (0, 90], azimuth CCW from +x): re-bakes the sky
  * map (about 11 M instructions at 256^2) and the automatic exposure; not for every frame. */
 int  renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err);

@@ -167,7 +167,7 @@ int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_e
     if (y0 < 0)
         y0 = 0;
     glEnable(GL_SCISSOR_TEST);
-    glScissor(0, y0, width, height - y0);
+    glScissor(view->x, view->y + y0, width, height - y0);
     glm_mat4_inv(world_to_clip, inv);
     glUseProgram(r->skyp.program);
     glUniformMatrix4fv(r->su[SU_CLIP_TO_WORLD], 1, GL_FALSE, (const GLfloat *)inv);
