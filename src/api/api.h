@@ -1,0 +1,21 @@
+/* api.h - what the public handles hold (include/swell.h): the api layer wraps the library's
+ * modules, above every other layer; nothing below includes it. */
+#ifndef SWELL_API_INTERNAL_H
+#define SWELL_API_INTERNAL_H
+
+#include "swell.h"
+#include "gl/gpu.h"
+#include "render/renderer.h"
+#include "tables/tables.h"
+
+struct swell_sea {
+    struct swell_tables tables;
+};
+
+struct swell_ocean {
+    const struct swell_sea *sea;
+    struct gpu gpu;
+    struct renderer *renderer;
+};
+
+#endif

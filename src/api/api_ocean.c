@@ -1,0 +1,145 @@
+/* api_ocean.c - the public ocean (include/swell.h): the renderer in the application's context,
+ * drawn with the application's camera matrices into its framebuffer, the GL state it changes
+ * restored (gl/glstate.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "api/api.h"
+#include "gl/glstate.h"
+
+_Static_assert((int)SWELL_QUALITY_HIGH == QUALITY_HIGH && (int)SWELL_QUALITY_LOW == QUALITY_LOW,
+               "swell.h's qualities are the renderer's");
+_Static_assert((int)SWELL_GEOMETRY_GRID == GEOMETRY_GRID &&
+               (int)SWELL_GEOMETRY_PATCHES == GEOMETRY_PATCHES,
+               "swell.h's geometries are the grid's");
+_Static_assert((int)SWELL_DETILE_AUTO == DETILE_MODE_AUTO &&
+               (int)SWELL_DETILE_ON == DETILE_MODE_ON && (int)SWELL_DETILE_OFF == DETILE_MODE_OFF,
+               "swell.h's detile modes are detile.h's");
+_Static_assert(SWELL_TIER_GLES2_MIN - 1 == TIER_GLES2_MIN && SWELL_TIER_GLES3 - 1 == TIER_GLES3,
+               "swell.h's tiers are gpu.h's plus one (0 = the best)");
+
+static int saved_units(const struct gpu *g)
+{
+    return g->caps.texture_units > 0 ? g->caps.texture_units : GL_STATE_UNITS;
+}
+
+int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell_ocean **out,
+                       struct swell_err *err)
+{
+    swell_ocean_desc d0;
+    memset(&d0, 0, sizeof d0);
+    const swell_ocean_desc *d = desc ? desc : &d0;
+    if (!sea || !out)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_create: sea and out must not be NULL");
+    *out = NULL;
+    if (d->quality < 0 || d->quality > SWELL_QUALITY_LOW || d->geometry < 0 ||
+        d->geometry > SWELL_GEOMETRY_PATCHES || d->tier < 0 || d->tier > SWELL_TIER_GLES3 ||
+        d->detile < 0 || d->detile > SWELL_DETILE_OFF)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_create: quality %d, geometry %d, tier "
+                          "%d or detile %d is not one of swell.h's", d->quality, d->geometry,
+                          d->tier, d->detile);
+    if (d->sun_elev_deg < 0.0f || d->sun_elev_deg > 90.0f)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_create: sun elevation %g deg is out "
+                          "of range: (0, 90], or 0 for 30", (double)d->sun_elev_deg);
+    swell_ocean *o = calloc(1, sizeof *o);
+    if (!o)
+        return swell_fail(err, SWELL_E_NOMEM, "swell_ocean_create: no memory");
+    o->sea = sea;
+    struct renderer_desc rd = {
+        .tables = &sea->tables, .shader_dir = d->shader_dir, .quality = d->quality,
+        .geometry = d->geometry, .sun_elev_deg = d->sun_elev_deg,
+        .sun_azim_deg = d->sun_azim_deg, .detile = d->detile,
+    };
+    struct gl_state st;
+    gl_state_save(&st, GL_STATE_UNITS, 0);
+    int rc = renderer_open(&rd, &o->gpu, d->tier - 1, sea->tables.state.budget_bytes, NULL,
+                           NULL, &o->renderer, err);
+    gl_state_restore(&st);
+    if (rc) {
+        free(o);
+        return rc;
+    }
+    *out = o;
+    return SWELL_OK;
+}
+
+/* The renderer's camera from the application's matrices: heading and pitch from the view's
+ * forward axis, the field of view and clip planes from the projection. */
+static int view_camera(const swell_view *v, struct camera *c, struct swell_err *err)
+{
+    const float *m = v->view, *p = v->proj;
+    /* rows of the rotation (column-major: element (row r, column k) at m[4 k + r]) */
+    double right[3] = { m[0], m[4], m[8] }, up[3] = { m[1], m[5], m[9] };
+    double fwd[3] = { -m[2], -m[6], -m[10] };
+    double rl = sqrt(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
+    double fl = sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
+    if (!(rl > 0.0) || !(fl > 0.0) || !isfinite(rl) || !isfinite(fl))
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the view matrix has no rotation");
+    if (fabs(right[2] / rl) > 1e-3 || up[2] < 0.0)
+        return swell_fail(err, SWELL_E_UNSUPPORTED, "swell_ocean_draw: the view rolls (its x "
+                          "axis is %.3g off level) or is upside down; roll is not supported "
+                          "yet: level the camera", asin(fmin(fabs(right[2] / rl), 1.0)));
+    if (p[3] != 0.0f || p[7] != 0.0f || p[11] != -1.0f || p[15] != 0.0f ||
+        fabs(p[8]) > 1e-4 || fabs(p[9]) > 1e-4 || !(p[0] > 0.0f) || !(p[5] > 0.0f))
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the projection is not a "
+                          "symmetric perspective (as gluPerspective builds)");
+    double n = p[14] / (p[10] - 1.0), f = p[14] / (p[10] + 1.0);
+    if (!(n > 0.0) || !(f > n) || !isfinite(f))
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the projection's clip planes "
+                          "(%g, %g m) are not 0 < near < far", n, f);
+    memset(c, 0, sizeof *c);
+    for (int k = 0; k < 3; k++)
+        c->pos[k] = v->camera_pos[k];
+    c->heading_deg = (float)(atan2(fwd[1], fwd[0]) * 180.0 / M_PI);
+    c->pitch_deg = (float)(asin(fmax(-1.0, fmin(1.0, fwd[2] / fl))) * 180.0 / M_PI);
+    c->fov_y_deg = (float)(2.0 * atan(1.0 / p[5]) * 180.0 / M_PI);
+    c->near_m = (float)n;
+    c->far_m = (float)f;
+    return SWELL_OK;
+}
+
+int swell_ocean_draw(swell_ocean *o, const swell_view *v, double t_s, struct swell_err *err)
+{
+    if (!o || !v)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: ocean and view must not be NULL");
+    if (v->viewport[2] <= 0 || v->viewport[3] <= 0 || !isfinite(t_s))
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: viewport %d x %d must not be "
+                          "empty and t_s %g finite", v->viewport[2], v->viewport[3], t_s);
+    struct renderer_view rv = {
+        .x = v->viewport[0], .y = v->viewport[1], .width = v->viewport[2],
+        .height = v->viewport[3], .proj = v->proj,
+        .flags = ((v->flags & SWELL_DRAW_CLEAR) ? RENDERER_CLEAR : 0) |
+                 ((v->flags & SWELL_DRAW_SKY) ? RENDERER_SKY : 0),
+    };
+    int rc = view_camera(v, &rv.cam, err);
+    if (rc)
+        return rc;
+    struct gl_state st;
+    gl_state_save(&st, saved_units(&o->gpu), o->gpu.caps.context_major >= 3);
+    rc = renderer_draw(o->renderer, &rv, t_s, err);
+    gl_state_restore(&st);
+    return rc;
+}
+
+int swell_ocean_set_sun(swell_ocean *o, float elev_deg, float azim_deg, struct swell_err *err)
+{
+    if (!o)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_set_sun: ocean is NULL");
+    if (!(elev_deg > 0.0f && elev_deg <= 90.0f) || !isfinite(azim_deg))
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_set_sun: elevation %g deg must be in "
+                          "(0, 90] and the azimuth finite", (double)elev_deg);
+    struct gl_state st;
+    gl_state_save(&st, saved_units(&o->gpu), o->gpu.caps.context_major >= 3);
+    int rc = renderer_set_sun(o->renderer, elev_deg, azim_deg, err);
+    gl_state_restore(&st);
+    return rc;
+}
+
+void swell_ocean_destroy(swell_ocean *o)
+{
+    if (!o)
+        return;
+    renderer_destroy(o->renderer);
+    gpu_shutdown(&o->gpu);
+    free(o);
+}
