@@ -13,28 +13,53 @@ BUILD ?= build/$(if $(SAN),san,rel)
 TABLES_DIR ?= build/tables/default
 # where `make install` puts swell; the programs look for their data in $(PREFIX)/share/swell
 PREFIX ?= /usr/local
+# where the library and swell.pc go
+LIBDIR ?= $(PREFIX)/lib
 # staging root for packagers: files go to $(DESTDIR)$(PREFIX)/...
 DESTDIR ?=
 # seconds per fuzz target for `make fuzz`
 FUZZ_SECONDS ?= 30
 # ---------------------------------------------------------------------------------------------
 
-PKGS := fftw3f libpng zlib cglm egl glesv2 gbm libdrm libinput libudev
-PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+PKG_CONFIG ?= pkg-config
+# the library's packages; the programs add the KMS back-end's
+LIB_PKGS := fftw3f libpng zlib cglm egl glesv2
+PKGS := $(LIB_PKGS) gbm libdrm libinput libudev
+PKG_CFLAGS = $(shell $(PKG_CONFIG) --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS = $(shell $(PKG_CONFIG) --libs $(PKGS) 2>/dev/null)
+LIB_PKG_LIBS = $(shell $(PKG_CONFIG) --libs $(LIB_PKGS) 2>/dev/null)
+# a missing package is named here, not as a missing header in the middle of a build
+MISSING_PKGS := $(if $(filter clean deps,$(MAKECMDGOALS)),,$(shell for p in $(PKGS); do \
+    $(PKG_CONFIG) --exists $$p 2>/dev/null || printf '%s ' $$p; done))
+ifneq ($(strip $(MISSING_PKGS)),)
+ifeq ($(filter run test,$(MAKECMDGOALS)),)
+$(error pkg-config finds no $(strip $(MISSING_PKGS)): run `make deps` (as root) or tools/install-deps.sh)
+endif
+endif
 
 WARN := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Werror=implicit-function-declaration \
         -Wno-unused-parameter
 SANFLAGS := $(if $(SAN),-fsanitize=$(SAN) -fno-omit-frame-pointer -fno-sanitize-recover=all,)
 CFLAGS ?= -g
-ALL_CFLAGS = $(WARN) $(OPT) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -Iinclude -Isrc -I$(BUILD)/gen -MMD -MP
-LDLIBS_ALL = $(PKG_LIBS) -lm -lpthread
+# -fPIC: every object also goes into libswell.so; -fvisibility=hidden: it exports swell.h alone
+ALL_CFLAGS = $(WARN) $(OPT) $(CPPFLAGS) $(CFLAGS) $(SANFLAGS) $(PKG_CFLAGS) -fPIC \
+             -fvisibility=hidden -Iinclude -Isrc -I$(BUILD)/gen -MMD -MP
+LDLIBS_ALL = $(LDFLAGS) $(PKG_LIBS) -lm -lpthread
 
 # src/<layer>/<module>.c (docs/architecture.md); the two programs' mains are in src/app
 APP_MAIN := src/app/swell.c src/app/swell_bake.c
 LIB_SRC := $(filter-out $(APP_MAIN),$(wildcard src/*/*.c))
 LIB_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
-LIB := $(BUILD)/libswell.a
+# the programs and tests link every module (internal names included)
+LIB := $(BUILD)/libswell-internal.a
+# the public library: every layer but the programs' (app) and their KMS back-end (platform)
+PUB_OBJ := $(filter-out $(BUILD)/obj/app/% $(BUILD)/obj/platform/%,$(LIB_OBJ))
+SO_VERSION := $(shell sed -n 's/^\#define SWELL_VERSION_STRING "\(.*\)"/\1/p' include/swell.h)
+SO_MAJOR := $(firstword $(subst ., ,$(SO_VERSION)))
+SO_NAME := libswell.so.$(SO_MAJOR)
+SHLIB := $(BUILD)/lib/libswell.so.$(SO_VERSION)
+STLIB := $(BUILD)/lib/libswell.a
+PC := $(BUILD)/lib/swell.pc
 
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
@@ -47,7 +72,7 @@ SWELL_BAKE := $(BUILD)/swell-bake
 
 .PHONY: all deps run install uninstall test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden test-devices
 
-all: $(SWELL_BAKE) $(SWELL)
+all: $(SWELL_BAKE) $(SWELL) $(SHLIB) $(STLIB) $(PC)
 
 deps:
 	@tools/install-deps.sh
@@ -63,7 +88,7 @@ $(BUILD)/tools/%.o: tools/%.c
 # the library's shader assembler for tools/validate-shaders.sh
 SHADER_SOURCE := $(BUILD)/tools/shader-source
 $(SHADER_SOURCE): $(BUILD)/tools/shader_source.o $(LIB)
-	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
 
 $(BUILD)/tests/%.o: tests/unit/%.c
 	@mkdir -p $(dir $@)
@@ -90,18 +115,42 @@ $(LIB): $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
+# libswell.so: only swell.h's symbols exported (-fvisibility=hidden, SWELL_API)
+$(SHLIB): $(PUB_OBJ)
+	@mkdir -p $(dir $@)
+	$(CC) -shared -Wl,-soname,$(SO_NAME) -Wl,--no-undefined $(SANFLAGS) -o $@ $^ \
+	    $(LDFLAGS) $(LIB_PKG_LIBS) -lm -lpthread
+	ln -sf $(notdir $@) $(BUILD)/lib/$(SO_NAME)
+	ln -sf $(SO_NAME) $(BUILD)/lib/libswell.so
+
+# libswell.a: the same objects linked into one, every name but swell.h's made local, so an
+# application's own names never meet the library's
+$(STLIB): $(PUB_OBJ)
+	@mkdir -p $(dir $@)
+	$(LD) -r -o $(BUILD)/lib/swell-all.o $^
+	objcopy --localize-hidden $(BUILD)/lib/swell-all.o
+	rm -f $@
+	ar rcs $@ $(BUILD)/lib/swell-all.o
+
+$(PC): tools/swell.pc.in include/swell.h
+	@mkdir -p $(dir $@)
+	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|g' -e 's|@VERSION@|$(SO_VERSION)|g' \
+	    -e 's|@PRIVATE@|$(filter-out cglm egl glesv2,$(LIB_PKGS))|g' $< > $@
+
 $(SWELL_BAKE): $(BUILD)/obj/app/swell_bake.o $(LIB)
-	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
 
 $(SWELL): $(BUILD)/obj/app/swell.o $(LIB)
-	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
 
 $(BUILD)/tests/%: $(BUILD)/tests/%.o $(LIB)
-	$(CC) $(OPT) $(SANFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL) -lcmocka
+	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL) -lcmocka
 
 # ---- install: `make install PREFIX=/usr DESTDIR=/tmp/stage`; the programs find their data in
 # share/swell beside their bin/ (src/core/datadir.h), so a staged or moved tree works too.
 BINDIR = $(DESTDIR)$(PREFIX)/bin
+LIB_DEST = $(DESTDIR)$(LIBDIR)
+INC_DEST = $(DESTDIR)$(PREFIX)/include
 DATA_DEST = $(DESTDIR)$(PREFIX)/share/swell
 MAN1DIR = $(DESTDIR)$(PREFIX)/share/man/man1
 DOCDIR = $(DESTDIR)$(PREFIX)/share/doc/swell
@@ -109,6 +158,8 @@ SHADER_FILES := $(wildcard shaders_gles/*.vert shaders_gles/*.frag shaders_gles/
 PRESET_FILES := $(wildcard tables/*.preset)
 MAN1 := docs/man/swell.1 docs/man/swell-bake.1
 INSTALLED = $(BINDIR)/swell $(BINDIR)/swell-bake $(SHADER_FILES:%=$(DATA_DEST)/%) \
+            $(LIB_DEST)/libswell.so.$(SO_VERSION) $(LIB_DEST)/$(SO_NAME) $(LIB_DEST)/libswell.so \
+            $(LIB_DEST)/libswell.a $(LIB_DEST)/pkgconfig/swell.pc $(INC_DEST)/swell.h \
             $(PRESET_FILES:%=$(DATA_DEST)/%) $(MAN1:docs/man/%=$(MAN1DIR)/%) $(DOCDIR)/LICENSE
 
 install: all
@@ -118,6 +169,14 @@ install: all
 	install -m 644 $(PRESET_FILES) $(DATA_DEST)/tables/
 	install -m 644 $(MAN1) $(MAN1DIR)/
 	install -m 644 LICENSE $(DOCDIR)/
+	install -d $(LIB_DEST)/pkgconfig $(INC_DEST)
+	install -m 755 $(SHLIB) $(LIB_DEST)/
+	ln -sf libswell.so.$(SO_VERSION) $(LIB_DEST)/$(SO_NAME)
+	ln -sf $(SO_NAME) $(LIB_DEST)/libswell.so
+	install -m 644 $(STLIB) $(LIB_DEST)/
+	install -m 644 $(PC) $(LIB_DEST)/pkgconfig/
+	install -m 644 include/swell.h $(INC_DEST)/
+	@if [ -z "$(DESTDIR)" ] && [ "$$(id -u)" = 0 ] && command -v ldconfig >/dev/null; then ldconfig; fi
 
 # removes exactly what install put there, then the directories swell owns if they are empty
 uninstall:

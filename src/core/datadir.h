@@ -7,8 +7,9 @@
  *      a directory without `sub` is an error, not a silent fall-back);
  *   2. the source tree the program was built in, when the running program is the uninstalled
  *      build inside it (so a developer's build reads the shaders being edited);
- *   3. share/swell beside the running program's bin/ (an installed tree wherever it was put:
- *      PREFIX, DESTDIR staging, a moved tree);
+ *   3. share/swell beside the lib/ of the libswell.so this code runs in (an application
+ *      linking the installed library), then beside the running program's bin/ (an installed
+ *      tree wherever it was put: PREFIX, DESTDIR staging, a moved tree);
  *   4. the install directory the program was built for, $(PREFIX)/share/swell (a program that
  *      links the library from elsewhere);
  *   5. the source tree otherwise (an installed program built from it, while it exists).
@@ -31,7 +32,7 @@ int data_dir_find(const char *sub, char *out, size_t cap, struct swell_err *err)
 
 /* The places data_dir_find tries, in order and without repeats, as directories without `sub`
  * (for messages and --help): fills up to max entries, returns how many. */
-#define DATADIR_MAX_CANDIDATES 4
+#define DATADIR_MAX_CANDIDATES 5
 int data_dir_candidates(char (*dirs)[4096], int max);
 
 /* The search order for --help: "Data: ..." lines naming the directories tried, in order. */
