@@ -199,7 +199,7 @@ test:
 	$(if $(SAN),,$(MAKE) test-kms)
 	@echo "make test$(if $(SAN), SAN=$(SAN),): all suites passed"
 
-test-unit: $(UNIT_BIN) $(SWELL_BAKE)
+test-unit: $(UNIT_BIN) all
 	@tools/run-tests.sh unit $(BUILD) $(UNIT_BIN) $(CLI_TESTS)
 
 # CPU numerics again without optimisation (catches UB that -O2 hides and vice versa)

@@ -1,0 +1,367 @@
+/* test_api.c - the public API (include/swell.h) as an embedding application uses it: its own
+ * framebuffer and content, its own camera matrices, the CPU query against what the GPU drew.
+ *
+ * - CPU vs GPU: for points 10-30 m ahead of a camera 12 m up, a small level marker drawn by the
+ *   application at the queried height + TOL shows over the sea swell drew, and one at height
+ *   - TOL is hidden by it (the depth test against the sea's own depth): the query and the drawn
+ *   surface agree within TOL, on gles2-min (the CPU displaces the grid) and on gles3 (the
+ *   vertex shader does).
+ * - The query repeats after the loop period exactly; a minimum wavelength lowers the height's
+ *   spread and 0 keeps every wave (the renderer's own sea_surface_height).
+ * - Embedding: the application's content outside the viewport and above the horizon is kept
+ *   bit for bit; the GL state glstate.h lists is as the application left it.
+ * Exit 77 (skip) only without an EGL device and CI unset (frame_util.h).
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include <GLES2/gl2.h>
+#include "frame/frame_util.h"
+#include "geometry/sea.h"
+#include "api/api.h"
+#include "swell.h"
+
+#define W 480
+#define H 270
+#define TOL 0.08               /* m: the query vs the drawn surface (moderate sea, Hs 2.1 m; all
+                                * 24 points agree within 0.06 m, 0.03 m misses 2-3) */
+#define NPTS 24
+
+static struct platform_handle g_ph;
+static swell_sea *g_sea;
+static GLuint g_fbo, g_prog;
+
+static void make_framebuffer(void)
+{
+    GLuint colour, depth;
+    glGenFramebuffers(1, &g_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+    glGenRenderbuffers(1, &colour);
+    glBindRenderbuffer(GL_RENDERBUFFER, colour);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA4, W, H);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, W, H);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    assert_int_equal(glCheckFramebufferStatus(GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
+}
+
+static GLuint marker_program(void)
+{
+    static const char *src[2] = {
+        "attribute vec3 a_pos; uniform mat4 mvp;\n"
+        "void main() { gl_Position = mvp * vec4(a_pos, 1.0); }\n",
+        "precision mediump float;\nvoid main() { gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0); }\n"
+    };
+    GLenum kind[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
+    GLuint p = glCreateProgram();
+    for (int i = 0; i < 2; i++) {
+        GLuint s = glCreateShader(kind[i]);
+        glShaderSource(s, 1, &src[i], NULL);
+        glCompileShader(s);
+        glAttachShader(p, s);
+    }
+    glBindAttribLocation(p, 0, "a_pos");
+    glLinkProgram(p);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    assert_true(ok);
+    return p;
+}
+
+/* The application's camera: eye EYE_Z m up at the origin, heading 0, pitch PITCH deg (steep
+ * enough that no nearer crest hides a marker). */
+#define EYE_Z 12.0
+#define PITCH -30.0
+static void app_view(swell_view *v, float mvp[16])
+{
+    memset(v, 0, sizeof *v);
+    v->camera_pos[2] = EYE_Z;
+    double p = PITCH * M_PI / 180.0, f[3] = { cos(p), 0.0, sin(p) }, s[3] = { 0.0, -1.0, 0.0 };
+    double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
+                    s[0] * f[1] - s[1] * f[0] };
+    float r[16] = { (float)s[0], (float)u[0], (float)-f[0], 0, (float)s[1], (float)u[1],
+                    (float)-f[1], 0, (float)s[2], (float)u[2], (float)-f[2], 0, 0, 0, 0, 1 };
+    memcpy(v->view, r, sizeof r);
+    double t = 1.0 / tan(50.0 * M_PI / 360.0), n = 0.5, fa = 5000.0;
+    v->proj[0] = (float)(t * H / W);
+    v->proj[5] = (float)t;
+    v->proj[10] = (float)((fa + n) / (n - fa));
+    v->proj[11] = -1.0f;
+    v->proj[14] = (float)(2.0 * fa * n / (n - fa));
+    v->viewport[2] = W;
+    v->viewport[3] = H;
+    for (int c = 0; c < 4; c++)
+        for (int rr = 0; rr < 4; rr++) {
+            float acc = 0.0f;
+            for (int k = 0; k < 4; k++)
+                acc += v->proj[4 * k + rr] * v->view[4 * c + k];
+            mvp[4 * c + rr] = acc;
+        }
+}
+
+/* Pixel of a camera-relative point, or -1 when off screen. */
+static int pixel_of(const float mvp[16], const float q[3], int *px, int *py)
+{
+    float c[4];
+    for (int r = 0; r < 4; r++)
+        c[r] = mvp[r] * q[0] + mvp[4 + r] * q[1] + mvp[8 + r] * q[2] + mvp[12 + r];
+    if (c[3] <= 0.0f)
+        return -1;
+    *px = (int)floorf((c[0] / c[3] * 0.5f + 0.5f) * W);
+    *py = (int)floorf((c[1] / c[3] * 0.5f + 0.5f) * H);
+    return *px >= 2 && *px < W - 2 && *py >= 2 && *py < H - 2 ? 0 : -1;
+}
+
+/* Draw level markers 0.4 m across at (x, y, z + dz) for every point; count those whose centre
+ * pixel shows the marker's green. */
+static int markers_shown(const float mvp[16], const double *xy, const swell_sample *s, double dz)
+{
+    glUseProgram(g_prog);
+    glUniformMatrix4fv(glGetUniformLocation(g_prog, "mvp"), 1, GL_FALSE, mvp);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glEnableVertexAttribArray(0);
+    for (int i = 0; i < NPTS; i++) {
+        float x = (float)xy[2 * i], y = (float)xy[2 * i + 1], z = (float)(s[i].height_m + dz - EYE_Z);
+        float v[12] = { x - 0.2f, y - 0.2f, z, x + 0.2f, y - 0.2f, z,
+                        x - 0.2f, y + 0.2f, z, x + 0.2f, y + 0.2f, z };
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, v);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+    glDisableVertexAttribArray(0);
+    static uint8_t px[W * H * 4];
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    int shown = 0;
+    for (int i = 0; i < NPTS; i++) {
+        float q[3] = { (float)xy[2 * i], (float)xy[2 * i + 1], (float)(s[i].height_m + dz - EYE_Z) };
+        int x, y;
+        if (pixel_of(mvp, q, &x, &y))
+            continue;
+        const uint8_t *p = px + 4 * (y * W + x);
+        shown += p[0] < 40 && p[1] > 200 && p[2] < 40;
+    }
+    return shown;
+}
+
+static void sea_vs_markers(int tier)
+{
+    swell_ocean *o = NULL;
+    struct swell_err err = { 0 };
+    swell_ocean_desc od = { .tier = tier, .detile = SWELL_DETILE_OFF };
+    if (swell_ocean_create(g_sea, &od, &o, &err))
+        fail_msg("swell_ocean_create: %s", err.msg);
+    swell_view v;
+    float mvp[16];
+    app_view(&v, mvp);
+    v.flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
+    double xy[2 * NPTS], t = 2.5;
+    swell_sample s[NPTS];
+    for (int i = 0; i < NPTS; i++) {
+        xy[2 * i] = 10.0 + 20.0 * (i % 6) / 5.0;        /* 10..30 m ahead */
+        xy[2 * i + 1] = -6.0 + 12.0 * (i / 6) / 3.0;     /* 6 m either side */
+    }
+    swell_sample_desc qd = { .no_detile = 1 };
+    assert_int_equal(swell_sea_sample(g_sea, &qd, xy, NPTS, t, s, &err), 0);
+    int on_screen = 0;
+    for (int i = 0; i < NPTS; i++) {
+        float q[3] = { (float)xy[2 * i], (float)xy[2 * i + 1], (float)(s[i].height_m - EYE_Z) };
+        int x, y;
+        on_screen += pixel_of(mvp, q, &x, &y) == 0;
+    }
+    int shown[2];
+    for (int k = 0; k < 2; k++) {
+        glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+        if (swell_ocean_draw(o, &v, t, &err))
+            fail_msg("swell_ocean_draw: %s", err.msg);
+        shown[k] = markers_shown(mvp, xy, s, k ? -TOL : TOL);
+    }
+    printf("tier %d: of %d points on screen, markers %.2f m above the queried height shown at "
+           "%d, %.2f m below at %d\n", tier, on_screen, TOL, shown[0], TOL, shown[1]);
+    assert_true(on_screen >= NPTS * 3 / 4);
+    assert_int_equal(shown[0], on_screen);
+    assert_int_equal(shown[1], 0);
+    swell_ocean_destroy(o);
+}
+
+static void test_height_gles2_min(void **state) { (void)state; sea_vs_markers(SWELL_TIER_GLES2_MIN); }
+static void test_height_gles3(void **state) { (void)state; sea_vs_markers(SWELL_TIER_GLES3); }
+
+static void test_query_loop_and_low_pass(void **state)
+{
+    (void)state;
+    struct swell_err err = { 0 };
+    swell_sea_info info;
+    swell_sea_get_info(g_sea, &info);
+    enum { N = 200 };
+    static double xy[2 * N];
+    static swell_sample a[N], b[N], lp[N];
+    for (int i = 0; i < N; i++) {
+        xy[2 * i] = 13.7 * i - 900.0;
+        xy[2 * i + 1] = 7.3 * (i % 17) + 0.1 * i;
+    }
+    double t = 1234.56;
+    assert_int_equal(swell_sea_sample(g_sea, NULL, xy, N, t, a, &err), 0);
+    assert_int_equal(swell_sea_sample(g_sea, NULL, xy, N, t + info.loop_period_s, b, &err), 0);
+    double var = 0.0, var_lp = 0.0;
+    swell_sample_desc lpd = { .min_wavelength_m = 40.0 };
+    assert_int_equal(swell_sea_sample(g_sea, &lpd, xy, N, t, lp, &err), 0);
+    /* longer than every pattern: no wave left */
+    static swell_sample flat[N];
+    float largest = 0.0f;
+    for (int i = 0; i < info.patterns; i++)
+        largest = fmaxf(largest, info.pattern_size_m[i]);
+    swell_sample_desc flatd = { .min_wavelength_m = 4.0 * largest };
+    assert_int_equal(swell_sea_sample(g_sea, &flatd, xy, N, t, flat, &err), 0);
+    for (int i = 0; i < N; i++) {
+        assert_true(a[i].height_m == b[i].height_m);
+        assert_true(a[i].velocity[2] == b[i].velocity[2]);
+        /* no minimum: the renderer's own surface (detile on, as the default high quality) */
+        assert_true(fabs(a[i].height_m - sea_surface_height(&g_sea->tables, 1, xy[2 * i],
+                                                             xy[2 * i + 1], t)) < 1e-9);
+        float nz = a[i].normal[2], len = sqrtf(a[i].normal[0] * a[i].normal[0] +
+                                               a[i].normal[1] * a[i].normal[1] + nz * nz);
+        assert_true(fabsf(len - 1.0f) < 1e-4f && nz > 0.0f);
+        assert_true(flat[i].height_m == 0.0 && flat[i].velocity[2] == 0.0f);
+        var += a[i].height_m * a[i].height_m;
+        var_lp += lp[i].height_m * lp[i].height_m;
+    }
+    printf("height rms %.3f m, low-passed to 40 m %.3f m (Hs %.2f m)\n", sqrt(var / N),
+           sqrt(var_lp / N), info.significant_height_m);
+    assert_true(var_lp < var);
+    assert_true(var_lp > 0.0);
+    /* bad input: a precise error, nothing written */
+    double bad[2] = { NAN, 0.0 };
+    assert_int_equal(swell_sea_sample(g_sea, NULL, bad, 1, t, a, &err), SWELL_E_ARG);
+    swell_sample_desc neg = { .min_wavelength_m = -1.0 };
+    assert_int_equal(swell_sea_sample(g_sea, &neg, xy, 1, t, a, &err), SWELL_E_ARG);
+}
+
+/* The application's pixels outside the viewport and above the sea stay; the state stays. */
+static void test_embedding_keeps_app(void **state)
+{
+    (void)state;
+    struct swell_err err = { 0 };
+    swell_ocean *o = NULL;
+    swell_ocean_desc od = { .quality = SWELL_QUALITY_LOW };
+    if (swell_ocean_create(g_sea, &od, &o, &err))
+        fail_msg("swell_ocean_create: %s", err.msg);
+    swell_view v;
+    float mvp[16];
+    app_view(&v, mvp);
+    v.viewport[0] = 40;                 /* a viewport inside the framebuffer */
+    v.viewport[1] = 20;
+    v.viewport[2] = W - 80;
+    v.viewport[3] = H - 40;
+    v.flags = SWELL_DRAW_CLEAR;          /* cleared within the viewport only, no sky */
+    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+    glViewport(0, 0, W, H);
+    glClearColor(0.8f, 0.2f, 0.4f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    /* application state swell must leave as it was */
+    GLuint tex[2];
+    glGenTextures(2, tex);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, tex[0]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex[1]);
+    glActiveTexture(GL_TEXTURE2);
+    glUseProgram(g_prog);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE);
+    glEnable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnableVertexAttribArray(5);
+    glViewport(3, 4, 50, 60);
+    glClearColor(0.1f, 0.2f, 0.3f, 0.4f);
+    GLint before[8], after[8];
+    GLfloat cc_before[4], cc_after[4];
+    GLint *q[2] = { before, after };
+    GLfloat *cc[2] = { cc_before, cc_after };
+    for (int k = 0; k < 2; k++) {
+        if (k == 1 && swell_ocean_draw(o, &v, 1.0, &err))
+            fail_msg("swell_ocean_draw: %s", err.msg);
+        glGetIntegerv(GL_CURRENT_PROGRAM, &q[k][0]);
+        glGetIntegerv(GL_ACTIVE_TEXTURE, &q[k][1]);
+        glGetIntegerv(GL_VIEWPORT, &q[k][2]);      /* 4 values: 2..5 */
+        glGetIntegerv(GL_BLEND_DST_RGB, &q[k][6]);
+        q[k][7] = (glIsEnabled(GL_BLEND) << 0) | (glIsEnabled(GL_CULL_FACE) << 1) |
+                  (glIsEnabled(GL_DEPTH_TEST) << 2);
+        glGetFloatv(GL_COLOR_CLEAR_VALUE, cc[k]);
+    }
+    assert_memory_equal(before, after, sizeof before);
+    assert_memory_equal(cc_before, cc_after, sizeof cc_before);
+    GLint bound[2], enabled = 0;
+    GLboolean mask = GL_TRUE;
+    glActiveTexture(GL_TEXTURE3);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound[0]);
+    glActiveTexture(GL_TEXTURE0);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound[1]);
+    glGetVertexAttribiv(5, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &enabled);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &mask);
+    assert_int_equal(bound[0], (GLint)tex[0]);
+    assert_int_equal(bound[1], (GLint)tex[1]);
+    assert_true(enabled);
+    assert_false(mask);
+    /* the pixels: the app's colour outside the viewport and in the viewport's top row (the
+     * cleared sky: no sky drawn, the clear's dark colour), the sea below */
+    static uint8_t px[W * H * 4];
+    glDisable(GL_BLEND);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    int outside = 0, outside_kept = 0, inside_app = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const uint8_t *p = px + 4 * (y * W + x);
+            int app = p[0] == 204 && p[1] == 51 && p[2] == 102;
+            int in = x >= 40 && x < W - 40 && y >= 20 && y < H - 20;
+            if (!in) {
+                outside++;
+                outside_kept += app;
+            } else {
+                inside_app += app;
+            }
+        }
+    printf("outside the viewport %d of %d pixels kept; %d inside still the app's colour\n",
+           outside_kept, outside, inside_app);
+    assert_int_equal(outside_kept, outside);
+    assert_int_equal(inside_app, 0);
+    glDeleteTextures(2, tex);
+    swell_ocean_destroy(o);
+}
+
+int main(void)
+{
+    int rc = frame_open("test_api", W, H, &g_ph);
+    if (rc)
+        return rc;
+    struct swell_err err = { 0 };
+    swell_sea_desc sd = { .preset = "moderate", .budget_bytes = 4u << 20 };
+    if (swell_sea_bake(&sd, &g_sea, &err)) {
+        fprintf(stderr, "test_api: baking: %s\n", err.msg);
+        return 1;
+    }
+    make_framebuffer();
+    g_prog = marker_program();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_query_loop_and_low_pass),
+        cmocka_unit_test(test_height_gles2_min),
+        cmocka_unit_test(test_height_gles3),
+        cmocka_unit_test(test_embedding_keeps_app),
+    };
+    rc = cmocka_run_group_tests(tests, NULL, NULL);
+    swell_sea_destroy(g_sea);
+    platform_close(&g_ph);
+    return rc;
+}
