@@ -170,9 +170,9 @@ enum swell_draw_flags {
 typedef struct swell_view {
     double camera_pos[3];       /* the eye in world coordinates, m (double: a sea of any size;
                                  * the renderer works relative to it) */
-    float view[16];             /* world-to-eye, column-major as glUniformMatrix4fv takes it;
-                                 * its translation is ignored (the eye is camera_pos). Roll is
-                                 * not supported yet: the eye's x axis must be level */
+    float view[16];             /* world-to-eye, column-major as glUniformMatrix4fv takes it: a
+                                 * rotation, any heading and roll, pitch within -89..89 deg;
+                                 * its translation is ignored (the eye is camera_pos) */
     float proj[16];             /* eye-to-clip, column-major: a symmetric perspective, NDC z in
                                  * [-1, 1] (as gluPerspective or glm_perspective build it); the
                                  * sea ends at 0.9 x its far plane */

@@ -75,10 +75,9 @@ static int view_camera(const swell_view *v, struct camera *c, struct swell_err *
     double fl = sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
     if (!(rl > 0.0) || !(fl > 0.0) || !isfinite(rl) || !isfinite(fl))
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the view matrix has no rotation");
-    if (fabs(right[2] / rl) > 1e-3 || up[2] < 0.0)
-        return swell_fail(err, SWELL_E_UNSUPPORTED, "swell_ocean_draw: the view rolls (its x "
-                          "axis is %.3g off level) or is upside down; roll is not supported "
-                          "yet: level the camera", asin(fmin(fabs(right[2] / rl), 1.0)));
+    if (fabs(fwd[2] / fl) > 0.99985)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the view looks straight up or "
+                          "down (within 1 deg): keep its pitch within -89..89 deg");
     if (p[3] != 0.0f || p[7] != 0.0f || p[11] != -1.0f || p[15] != 0.0f ||
         fabs(p[8]) > 1e-4 || fabs(p[9]) > 1e-4 || !(p[0] > 0.0f) || !(p[5] > 0.0f))
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the projection is not a "
@@ -92,6 +91,8 @@ static int view_camera(const swell_view *v, struct camera *c, struct swell_err *
         c->pos[k] = v->camera_pos[k];
     c->heading_deg = (float)(atan2(fwd[1], fwd[0]) * 180.0 / M_PI);
     c->pitch_deg = (float)(asin(fmax(-1.0, fmin(1.0, fwd[2] / fl))) * 180.0 / M_PI);
+    /* the bank: the eye's x axis is cos r level-right + sin r level-up (camera.h roll_deg) */
+    c->roll_deg = (float)(atan2(right[2], up[2]) * 180.0 / M_PI);
     c->fov_y_deg = (float)(2.0 * atan(1.0 / p[5]) * 180.0 / M_PI);
     c->near_m = (float)n;
     c->far_m = (float)f;
@@ -107,7 +108,7 @@ int swell_ocean_draw(swell_ocean *o, const swell_view *v, double t_s, struct swe
                           "empty and t_s %g finite", v->viewport[2], v->viewport[3], t_s);
     struct renderer_view rv = {
         .x = v->viewport[0], .y = v->viewport[1], .width = v->viewport[2],
-        .height = v->viewport[3], .proj = v->proj,
+        .height = v->viewport[3], .proj = v->proj, .view = v->view,
         .flags = ((v->flags & SWELL_DRAW_CLEAR) ? RENDERER_CLEAR : 0) |
                  ((v->flags & SWELL_DRAW_SKY) ? RENDERER_SKY : 0),
     };

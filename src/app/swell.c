@@ -87,6 +87,8 @@ static void usage(FILE *f)
 "  --camera X,Y,Z    camera position, m (x east, y north, z altitude 0.1..500000) [0,0,10]\n"
 "  --heading DEG     view direction CCW from east, degrees (-360..360)               [0]\n"
 "  --pitch DEG       view pitch, degrees, negative looks down (-89..89)            [-10]\n"
+"  --roll DEG        bank about the view axis, degrees, positive raises the right\n"
+"                    side (-180..180)                                              [0]\n"
 "  --path P          scripted camera: surface | 1km | 10km | orbit (400 km; overrides\n"
 "                    --camera)                                                   [none]\n"
 "Rendering:\n"
@@ -175,7 +177,7 @@ static int parse_args(int argc, char **argv, struct options *o)
     static const char *const valued[] = {
         "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
-        "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode",
+        "--roll", "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode",
         "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", NULL,
     };
     struct args args = { "swell", argc, argv, 1, flags, valued, 0 };
@@ -253,6 +255,8 @@ static int parse_args(int argc, char **argv, struct options *o)
             r = parse_float(a, v, -360, 360, "deg", &o->camera.heading_deg, &err);
         } else if (!strcmp(a, "--pitch")) {
             r = parse_float(a, v, -89, 89, "deg", &o->camera.pitch_deg, &err);
+        } else if (!strcmp(a, "--roll")) {
+            r = parse_float(a, v, -180, 180, "deg", &o->camera.roll_deg, &err);
         } else if (!strcmp(a, "--path")) {
             o->path = camera_path_from_name(v);
             if (o->path <= CAMERA_PATH_NONE)

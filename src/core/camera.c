@@ -81,6 +81,18 @@ void camera_view_rel(const struct camera *c, mat4 view)
         up[1] = -sinf(h) * (fwd[2] > 0.0f ? 1.0f : -1.0f);
         up[2] = 0.0f;
     }
+    if (c->roll_deg != 0.0f) {
+        /* the level up vector turned about the view axis: up' = cos r up - sin r right, with
+         * right = fwd x up (normalised) */
+        float r = glm_rad(c->roll_deg);
+        vec3 right, lvl;
+        glm_vec3_cross(fwd, up, right);
+        glm_vec3_normalize(right);
+        glm_vec3_cross(right, fwd, lvl);
+        glm_vec3_normalize(lvl);
+        for (int k = 0; k < 3; k++)
+            up[k] = cosf(r) * lvl[k] - sinf(r) * right[k];
+    }
     glm_look(eye, fwd, up, view);
 }
 
@@ -129,6 +141,14 @@ void camera_frame_make(const struct camera *c, int width, int height, struct cam
     float fov_deg = c->fov_y_deg > 0.0f ? c->fov_y_deg : CAMERA_FOV_DEFAULT_DEG;
     out->fov_y_rad = fov_deg * M_PI / 180.0;
     camera_basis(c->heading_deg, c->pitch_deg, out->fwd, out->right, out->up);
+    if (c->roll_deg != 0.0f) {
+        double r = c->roll_deg * M_PI / 180.0, cr = cos(r), sr = sin(r);
+        for (int k = 0; k < 3; k++) {
+            double rk = out->right[k], uk = out->up[k];
+            out->right[k] = cr * rk + sr * uk;
+            out->up[k] = cr * uk - sr * rk;
+        }
+    }
     float fov_f = fov_deg * (float)(M_PI / 180.0);
     out->pixel_rad = 2.0f * tanf(0.5f * fov_f) / (float)(height > 0 ? height : 1);
     out->footprint_alt_m = c->pos[2] > CAMERA_FOOTPRINT_MIN_ALT_M ? c->pos[2]

@@ -2,6 +2,7 @@
  *
  * Conventions (stated once, used everywhere): world x east, y north, z up, right-handed, metres.
  * Heading: degrees CCW from +x (0 looks east, 90 north). Pitch: degrees, negative looks down.
+ * Roll: degrees about the view axis, positive raises the camera's right side.
  * Matrices: cglm column-major mat4, OpenGL clip space (NDC z in [-1, 1]), radians inside.
  * The renderer works camera-relative: world positions minus the camera's, so nothing a shader
  * sees grows with distance (fp16 safety, DESIGN.md).
@@ -15,6 +16,8 @@ struct camera {
     double pos[3];          /* world position, m (z = altitude above mean sea level) */
     float heading_deg;      /* default 0 */
     float pitch_deg;        /* default -10 */
+    float roll_deg;         /* bank about the view axis: positive turns the camera's right side
+                               up (the horizon then falls to the right on screen); default 0 */
     float fov_y_deg;        /* vertical field of view; default 45 */
     float near_m, far_m;    /* clip planes; default 0 = chosen from the height above the
                                local surface */
@@ -60,7 +63,7 @@ struct camera_frame {
     float aspect;               /* width / height (1 without a height) */
     float near_m, far_m;        /* camera_clip_planes */
     double fov_y_rad;           /* the vertical field of view, the default applied */
-    double fwd[3], right[3], up[3];  /* the view's orthonormal basis, world axes */
+    double fwd[3], right[3], up[3];  /* the view's orthonormal basis, world axes (rolled) */
     float pixel_rad;            /* one pixel's vertical angle, rad: 2 tan(fov / 2) / height */
     double footprint_alt_m;     /* altitude for pixel footprints, >= CAMERA_FOOTPRINT_MIN_ALT_M */
     mat4 view_rel, proj;        /* camera-relative view (translation removed), projection */

@@ -356,11 +356,17 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
     camera_frame_make(cam, width, height, &view);
     view.x = v->x;
     view.y = v->y;
-    if (v->proj) {      /* the application's projection, exactly (depth it can test against) */
+    /* the application's matrices, exactly, so it can depth-test against the sea */
+    if (v->view) {
+        memcpy(view.view_rel, v->view, sizeof view.view_rel);
+        view.view_rel[3][0] = view.view_rel[3][1] = view.view_rel[3][2] = 0.0f;
+    }
+    if (v->proj) {
         memcpy(view.proj, v->proj, sizeof view.proj);
         view.aspect = view.proj[1][1] / view.proj[0][0];
-        glm_mat4_mul(view.proj, view.view_rel, view.world_to_clip);
     }
+    if (v->view || v->proj)
+        glm_mat4_mul(view.proj, view.view_rel, view.world_to_clip);
     stream_textures(r, t_s);
     vertex_frame(r, &view);   /* after the slots' constants of this loop phase */
     if (r->vtf) {

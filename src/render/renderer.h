@@ -122,6 +122,9 @@ struct renderer_view {
     int x, y, width, height;            /* the viewport, pixels */
     const float *proj;                  /* NULL: from cam; else 16 floats, column-major, a
                                          * symmetric perspective with cam's fov and planes */
+    const float *view;                  /* NULL: from cam; else its world-to-eye rotation
+                                         * (column-major, translation ignored), the same as
+                                         * cam's heading, pitch and roll */
     unsigned flags;                     /* RENDERER_CLEAR | RENDERER_SKY */
 };
 int  renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,

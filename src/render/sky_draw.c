@@ -153,8 +153,9 @@ int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_e
         if (clip[3] > 0.0f && fabsf(clip[0]) <= 1.05f * clip[3])
             hz = fminf(hz, clip[1] / clip[3]);
     }
-    if (hz > 1.5f)
-        hz = -1.0f;   /* no horizon in view: the sky pass everywhere */
+    if (hz > 1.5f || view->up[2] <= 0.0)
+        hz = -1.0f;   /* no horizon in view, or the view rolled upside down (the sky below the
+                       * horizon on screen): the sky pass everywhere */
     int y0 = (int)floorf((0.5f * (hz - 0.1f) + 0.5f) * (float)height);
     if (y0 >= height)
         return 0;

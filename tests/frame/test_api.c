@@ -5,7 +5,7 @@
  *   application at the queried height + TOL shows over the sea swell drew, and one at height
  *   - TOL is hidden by it (the depth test against the sea's own depth): the query and the drawn
  *   surface agree within TOL, on gles2-min (the CPU displaces the grid) and on gles3 (the
- *   vertex shader does).
+ *   vertex shader does), level and with the camera banked 25 deg.
  * - The query repeats after the loop period exactly; a minimum wavelength lowers the height's
  *   spread and 0 keeps every wave (the renderer's own sea_surface_height).
  * - Embedding: the application's content outside the viewport and above the horizon is kept
@@ -82,13 +82,19 @@ static GLuint marker_program(void)
  * enough that no nearer crest hides a marker). */
 #define EYE_Z 12.0
 #define PITCH -30.0
-static void app_view(swell_view *v, float mvp[16])
+static void app_view(swell_view *v, float mvp[16], double roll_deg)
 {
     memset(v, 0, sizeof *v);
     v->camera_pos[2] = EYE_Z;
-    double p = PITCH * M_PI / 180.0, f[3] = { cos(p), 0.0, sin(p) }, s[3] = { 0.0, -1.0, 0.0 };
-    double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
-                    s[0] * f[1] - s[1] * f[0] };
+    double p = PITCH * M_PI / 180.0, f[3] = { cos(p), 0.0, sin(p) }, s0[3] = { 0.0, -1.0, 0.0 };
+    double u0[3] = { s0[1] * f[2] - s0[2] * f[1], s0[2] * f[0] - s0[0] * f[2],
+                     s0[0] * f[1] - s0[1] * f[0] };
+    /* banked by roll_deg about the view axis (the right side raised for a positive angle) */
+    double b = roll_deg * M_PI / 180.0, s[3], u[3];
+    for (int k = 0; k < 3; k++) {
+        s[k] = cos(b) * s0[k] + sin(b) * u0[k];
+        u[k] = cos(b) * u0[k] - sin(b) * s0[k];
+    }
     float r[16] = { (float)s[0], (float)u[0], (float)-f[0], 0, (float)s[1], (float)u[1],
                     (float)-f[1], 0, (float)s[2], (float)u[2], (float)-f[2], 0, 0, 0, 0, 1 };
     memcpy(v->view, r, sizeof r);
@@ -155,7 +161,7 @@ static int markers_shown(const float mvp[16], const double *xy, const swell_samp
     return shown;
 }
 
-static void sea_vs_markers(int tier)
+static void sea_vs_markers(int tier, double roll_deg)
 {
     swell_ocean *o = NULL;
     struct swell_err err = { 0 };
@@ -164,7 +170,7 @@ static void sea_vs_markers(int tier)
         fail_msg("swell_ocean_create: %s", err.msg);
     swell_view v;
     float mvp[16];
-    app_view(&v, mvp);
+    app_view(&v, mvp, roll_deg);
     v.flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
     double xy[2 * NPTS], t = 2.5;
     swell_sample s[NPTS];
@@ -187,16 +193,27 @@ static void sea_vs_markers(int tier)
             fail_msg("swell_ocean_draw: %s", err.msg);
         shown[k] = markers_shown(mvp, xy, s, k ? -TOL : TOL);
     }
-    printf("tier %d: of %d points on screen, markers %.2f m above the queried height shown at "
-           "%d, %.2f m below at %d\n", tier, on_screen, TOL, shown[0], TOL, shown[1]);
+    printf("tier %d, roll %.0f deg: of %d points on screen, markers %.2f m above the queried height shown at "
+           "%d, %.2f m below at %d\n", tier, roll_deg, on_screen, TOL, shown[0], TOL, shown[1]);
     assert_true(on_screen >= NPTS * 3 / 4);
     assert_int_equal(shown[0], on_screen);
     assert_int_equal(shown[1], 0);
     swell_ocean_destroy(o);
 }
 
-static void test_height_gles2_min(void **state) { (void)state; sea_vs_markers(SWELL_TIER_GLES2_MIN); }
-static void test_height_gles3(void **state) { (void)state; sea_vs_markers(SWELL_TIER_GLES3); }
+static void test_height_gles2_min(void **state)
+{
+    (void)state;
+    sea_vs_markers(SWELL_TIER_GLES2_MIN, 0.0);
+    sea_vs_markers(SWELL_TIER_GLES2_MIN, -25.0);   /* a boat's camera, banked */
+}
+
+static void test_height_gles3(void **state)
+{
+    (void)state;
+    sea_vs_markers(SWELL_TIER_GLES3, 0.0);
+    sea_vs_markers(SWELL_TIER_GLES3, 25.0);
+}
 
 static void test_query_loop_and_low_pass(void **state)
 {
@@ -259,7 +276,7 @@ static void test_embedding_keeps_app(void **state)
         fail_msg("swell_ocean_create: %s", err.msg);
     swell_view v;
     float mvp[16];
-    app_view(&v, mvp);
+    app_view(&v, mvp, 0.0);
     v.viewport[0] = 40;                 /* a viewport inside the framebuffer */
     v.viewport[1] = 20;
     v.viewport[2] = W - 80;

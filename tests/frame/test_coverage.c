@@ -7,7 +7,8 @@
  * time within 1000 s. The renderer keeps the camera CAMERA_CLEARANCE_M above the surface under
  * it (renderer.h); the projected grid's range holds what displacement can reach (grid.c).
  * At the forced gles2-min tier (CPU geometry) for every preset; a share again on gles3, whose
- * grid is built in the vertex shader from the same frame, and with --geometry patches.
+ * grid is built in the vertex shader from the same frame, and with --geometry patches; and a
+ * share rolled, any angle (upside down included), from a stream of its own.
  * A failure prints the pose as a `swell` command line.
  */
 #include <math.h>
@@ -31,20 +32,24 @@
 #define H 72
 #define POSES_MIN 80           /* gles2-min poses per preset (5 presets: 400 in all) */
 #define POSES_OTHER 20        /* per preset on gles3 and with patches */
+#define POSES_ROLL 16         /* per preset with the camera rolled (gles2-min and gles3) */
 
 static struct platform_handle g_ph;
 static uint8_t g_img[W * H * 4];
 
 static uint64_t g_rng = 0x5eed2026u;
+static uint64_t g_roll_rng = 0x5eed2612u;   /* its own stream: the unrolled poses as before */
 
-static double uniform(void)
+/* xorshift64*: a fixed seed, the same poses on every machine */
+static double next_uniform(uint64_t *s)
 {
-    /* xorshift64*: a fixed seed, the same poses on every machine */
-    g_rng ^= g_rng >> 12;
-    g_rng ^= g_rng << 25;
-    g_rng ^= g_rng >> 27;
-    return (double)((g_rng * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
+    *s ^= *s >> 12;
+    *s ^= *s << 25;
+    *s ^= *s >> 27;
+    return (double)((*s * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
 }
+
+static double uniform(void) { return next_uniform(&g_rng); }
 
 static void random_pose(struct camera *c, double *t)
 {
@@ -71,6 +76,7 @@ static int uncovered(const uint8_t *img)
 struct run {
     const char *preset;
     int tier, geometry, quality, poses;
+    int roll;                   /* 1: each pose also rolled, -180..180 deg */
 };
 
 /* Render `poses` random poses of one preset; returns how many left pixels uncovered. */
@@ -97,6 +103,8 @@ static int fuzz(const struct swell_tables *t, const struct run *ru, int *raised)
         struct renderer_stats st;
         double t_s;
         random_pose(&c, &t_s);
+        if (ru->roll)
+            c.roll_deg = (float)(360.0 * next_uniform(&g_roll_rng) - 180.0);
         if (frame_draw(&g_ph, r, &c, t_s, W, H, g_img, &err))
             fail_msg("frame: %s", err.msg);
         renderer_get_stats(r, &st);
@@ -106,11 +114,11 @@ static int fuzz(const struct swell_tables *t, const struct run *ru, int *raised)
             bad++;
             print_error("%d of %d pixels uncovered: swell --preset %s --tier %s --geometry %s "
                         "--quality %s --size %dx%d --sun 35,20 --camera %.3f,%.3f,%.4f "
-                        "--heading %.3f --pitch %.3f --time %.4f --debug uncovered\n", n,
+                        "--heading %.3f --pitch %.3f --roll %.3f --time %.4f --debug uncovered\n", n,
                         W * H, ru->preset, gpu_tier_name(ru->tier),
                         geometry_kind_name(ru->geometry), render_quality_name(ru->quality), W,
                         H, c.pos[0], c.pos[1], c.pos[2], (double)c.heading_deg,
-                        (double)c.pitch_deg, t_s);
+                        (double)c.pitch_deg, (double)c.roll_deg, t_s);
         }
     }
     renderer_destroy(r);
@@ -133,10 +141,12 @@ static void test_camera_fuzz(void **state)
         if (swell_bake(&ss, NULL, &t, &err))
             fail_msg("swell_bake %s: %s", presets[p], err.msg);
         const struct run runs[] = {
-            { presets[p], TIER_GLES2_MIN, GEOMETRY_GRID, QUALITY_HIGH, POSES_MIN },
+            { presets[p], TIER_GLES2_MIN, GEOMETRY_GRID, QUALITY_HIGH, POSES_MIN, 0 },
             { presets[p], TIER_GLES3, GEOMETRY_GRID, p % 2 ? QUALITY_LOW : QUALITY_HIGH,
-              POSES_OTHER },
-            { presets[p], TIER_GLES2_MIN, GEOMETRY_PATCHES, QUALITY_LOW, POSES_OTHER },
+              POSES_OTHER, 0 },
+            { presets[p], TIER_GLES2_MIN, GEOMETRY_PATCHES, QUALITY_LOW, POSES_OTHER, 0 },
+            { presets[p], p % 2 ? TIER_GLES3 : TIER_GLES2_MIN, GEOMETRY_GRID,
+              p % 2 ? QUALITY_HIGH : QUALITY_LOW, POSES_ROLL, 1 },
         };
         for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
             bad += fuzz(&t, &runs[k], &raised);
