@@ -220,7 +220,7 @@ if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
     done
     # The CPU work depends on the tier and the view, on the sea state through the patterns
     # resolved per vertex (none for calm and rough, one on gles2-min for storm, whose breaking
-    # patterns fill the units; README gives storm's count by hand) and on the quality: low
+    # patterns fill the units; docs/measurements.md gives storm's count by hand) and on the quality: low
     # quality's CPU grid also reads the fragment patterns' whitecap tables per vertex (grid.c
     # k_moment_pass). One run per tier x path, on the last scene's tables.
     cg_scene=$(set -- $scenes; echo "${!#}")

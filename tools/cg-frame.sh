@@ -3,7 +3,7 @@
 # callgrind: `swell --bench --warmup 0` with LP_NUM_THREADS=0 (deterministic), its PROGRAM TOTALS
 # at --frames 4 minus --frames 1, over 3, after one run that fills Mesa's shader cache. Runs from
 # SHADER_PARENT, so its shaders_gles/ is the one drawn: a copy with a part taken out gives that
-# part's cost (README, Performance). Defaults: 320x180, rough tables from make bench
+# part's cost (docs/measurements.md, Performance). Defaults: 320x180, rough tables from make bench
 # (build/bench/tables/rough), camera 0,0,10 pitch -10, time 0; later options override them.
 # Needs valgrind. Not beside other GL work: tests that compile many shaders evict Mesa's cache,
 # and a recompile counted in one of the two runs gave 668 M for a 61 M frame.

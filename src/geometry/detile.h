@@ -44,7 +44,7 @@
 
 /* Whether the renderer reads the patterns through this lattice (swell --detile): AUTO is ON in
  * high quality and OFF in low (Hu's single pass for the weakest GPUs, where the lattice would
- * cost 2-3.5x the frame on llvmpipe; README), and OFF in high quality too where the driver
+ * cost 2-3.5x the frame on llvmpipe; docs/measurements.md), and OFF in high quality too where the driver
  * refuses more of its programs with the lattice than without (renderer.c renderer_create);
  * OFF reads each pattern once, at no offset, so its tiles repeat. */
 enum detile_mode { DETILE_MODE_AUTO = 0, DETILE_MODE_ON, DETILE_MODE_OFF, DETILE_MODE_COUNT };
