@@ -141,21 +141,15 @@ int options_parse(int argc, char **argv, struct options *o)
         "--roll", "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode",
         "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", NULL,
     };
-    struct args args = { "swell", argc, argv, 1, flags, valued, 0 };
+    struct args args = { "swell", argc, argv, 1, flags, valued, 0, usage, "swell " SWELL_VERSION_STRING };
     struct swell_err err = { 0 };
     const char *a, *v;
     int r = 0, k;
     while (!r && (k = args_next(&args, &a, &v)) != ARGS_END) {
         if (k == ARGS_ERROR)
             return 2;
-        if (k == ARGS_HELP) {
-            usage(stdout);
+        if (k == ARGS_DONE)
             exit(0);
-        }
-        if (k == ARGS_VERSION) {
-            printf("swell " SWELL_VERSION_STRING "\n");
-            exit(0);
-        }
         if (!strcmp(a, "--verbose")) {
             o->verbose = o->platform.verbose = 1;
         } else if (!strcmp(a, "--bench")) {

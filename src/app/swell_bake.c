@@ -86,7 +86,7 @@ static int parse_args(int argc, char **argv, struct options *o)
 {
     static const char *const flags[] = { "--quiet", NULL };
     static const char *const valued[] = { "--preset", "--out", "--report", NULL };
-    struct args args = { "swell-bake", argc, argv, 1, flags, valued, 1 };
+    struct args args = { "swell-bake", argc, argv, 1, flags, valued, 1, usage, "swell-bake " SWELL_VERSION_STRING };
     struct swell_err err = { 0 };
     struct seastate *s = &o->state;
     const char *a, *v;
@@ -94,14 +94,8 @@ static int parse_args(int argc, char **argv, struct options *o)
     while (!r && (k = args_next(&args, &a, &v)) != ARGS_END) {
         if (k == ARGS_ERROR)
             return 2;
-        if (k == ARGS_HELP) {
-            usage(stdout);
+        if (k == ARGS_DONE)
             exit(0);
-        }
-        if (k == ARGS_VERSION) {
-            printf("swell-bake " SWELL_VERSION_STRING "\n");
-            exit(0);
-        }
         if (!strcmp(a, "--quiet")) o->quiet = 1;
         else if (!strcmp(a, "--preset")) r = preset_load(v, s, &err);
         else if (!strcmp(a, "--out")) o->out_dir = v;

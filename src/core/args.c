@@ -18,10 +18,14 @@ int args_next(struct args *a, const char **name, const char **value)
     if (a->i >= a->argc)
         return ARGS_END;
     const char *arg = a->argv[a->i++];
-    if (!strcmp(arg, "--help") || !strcmp(arg, "-h"))
-        return ARGS_HELP;
-    if (!strcmp(arg, "--version"))
-        return ARGS_VERSION;
+    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+        a->usage(stdout);
+        return ARGS_DONE;
+    }
+    if (!strcmp(arg, "--version")) {
+        printf("%s\n", a->version);
+        return ARGS_DONE;
+    }
     if (strncmp(arg, "--", 2) != 0) {
         fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n", a->prog, arg);
         return ARGS_ERROR;

@@ -6,6 +6,8 @@
 #ifndef SWELL_ARGS_H
 #define SWELL_ARGS_H
 
+#include <stdio.h>
+
 struct args {
     const char *prog;                   /* names the program in messages */
     int argc;
@@ -14,12 +16,15 @@ struct args {
     const char *const *flags;           /* options without a value, NULL-terminated */
     const char *const *valued;          /* options with a value, NULL-terminated */
     int sea_options;                    /* 1: every option of seastate_fields takes a value */
+    void (*usage)(FILE *out);           /* --help's text */
+    const char *version;                /* --version's line */
 };
 
-enum { ARGS_ERROR = -1, ARGS_END = 0, ARGS_OPTION, ARGS_HELP, ARGS_VERSION };
+enum { ARGS_ERROR = -1, ARGS_END = 0, ARGS_OPTION, ARGS_DONE };
 
-/* The next option: ARGS_OPTION with *name and *value (NULL for a flag), ARGS_HELP, ARGS_VERSION,
- * ARGS_END after the last, or ARGS_ERROR with the message printed to stderr. */
+/* The next option: ARGS_OPTION with *name and *value (NULL for a flag); ARGS_DONE after
+ * printing --help or --version to stdout (the program exits 0); ARGS_END after the last;
+ * ARGS_ERROR with the message printed to stderr (the program exits 2). */
 int args_next(struct args *a, const char **name, const char **value);
 
 #endif
