@@ -141,7 +141,8 @@ int options_parse(int argc, char **argv, struct options *o)
         "--roll", "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode",
         "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", NULL,
     };
-    struct args args = { "swell", argc, argv, 1, flags, valued, 0, usage, "swell " SWELL_VERSION_STRING };
+    struct args args = { "swell", argc, argv, 1, flags, valued, 0, usage,
+                         "swell " SWELL_VERSION_STRING };
     struct swell_err err = { 0 };
     const char *a, *v;
     int r = 0, k;

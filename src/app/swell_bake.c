@@ -86,7 +86,8 @@ static int parse_args(int argc, char **argv, struct options *o)
 {
     static const char *const flags[] = { "--quiet", NULL };
     static const char *const valued[] = { "--preset", "--out", "--report", NULL };
-    struct args args = { "swell-bake", argc, argv, 1, flags, valued, 1, usage, "swell-bake " SWELL_VERSION_STRING };
+    struct args args = { "swell-bake", argc, argv, 1, flags, valued, 1, usage,
+                         "swell-bake " SWELL_VERSION_STRING };
     struct swell_err err = { 0 };
     struct seastate *s = &o->state;
     const char *a, *v;
