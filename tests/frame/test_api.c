@@ -7,12 +7,14 @@
  *   surface agree within TOL, on gles2-min (the CPU displaces the grid) and on gles3 (the
  *   vertex shader does), level and with the camera banked 25 deg.
  * - The query repeats after the loop period exactly; a minimum wavelength lowers the height's
- *   spread and 0 keeps every wave (the renderer's own sea_surface_height).
+ *   spread and 0 keeps every wave (the renderer's own sea_surface_height); four threads at once
+ *   get what one gets.
  * - Embedding: the application's content outside the viewport and above the horizon is kept
  *   bit for bit; the GL state glstate.h lists is as the application left it.
  * Exit 77 (skip) only without an EGL device and CI unset (frame_util.h).
  */
 #include <math.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -265,6 +267,44 @@ static void test_query_loop_and_low_pass(void **state)
     assert_int_equal(swell_sea_sample(g_sea, &neg, xy, 1, t, a, &err), SWELL_E_ARG);
 }
 
+/* Four threads query one sea at once and get what one thread gets (the sea is immutable). */
+#define TN 4
+#define TPTS 300
+struct query_job {
+    double xy[2 * TPTS];
+    swell_sample out[TPTS];
+    int rc;
+};
+
+static void *query_thread(void *arg)
+{
+    struct query_job *j = arg;
+    swell_sample_desc d = { .min_wavelength_m = 3.0 };
+    j->rc = swell_sea_sample(g_sea, &d, j->xy, TPTS, 77.7, j->out, NULL);
+    return NULL;
+}
+
+static void test_query_threads(void **state)
+{
+    (void)state;
+    static struct query_job jobs[TN], ref;
+    pthread_t th[TN];
+    for (int i = 0; i < TPTS; i++) {
+        ref.xy[2 * i] = 3.1 * i - 400.0;
+        ref.xy[2 * i + 1] = 1.7 * i + 50.0;
+    }
+    for (int k = 0; k < TN; k++) {
+        memcpy(jobs[k].xy, ref.xy, sizeof ref.xy);
+        assert_int_equal(pthread_create(&th[k], NULL, query_thread, &jobs[k]), 0);
+    }
+    query_thread(&ref);
+    for (int k = 0; k < TN; k++) {
+        assert_int_equal(pthread_join(th[k], NULL), 0);
+        assert_int_equal(jobs[k].rc, 0);
+        assert_memory_equal(jobs[k].out, ref.out, sizeof ref.out);
+    }
+}
+
 /* The application's pixels outside the viewport and above the sea stay; the state stays. */
 static void test_embedding_keeps_app(void **state)
 {
@@ -373,6 +413,7 @@ int main(void)
     g_prog = marker_program();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_query_loop_and_low_pass),
+        cmocka_unit_test(test_query_threads),
         cmocka_unit_test(test_height_gles2_min),
         cmocka_unit_test(test_height_gles3),
         cmocka_unit_test(test_embedding_keeps_app),
