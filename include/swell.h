@@ -153,6 +153,11 @@ typedef struct swell_ocean_desc {
     float sun_elev_deg;         /* sun elevation above the horizon, (0, 90]; default 30 */
     float sun_azim_deg;         /* sun azimuth, CCW from east; default 0 */
     const char *shader_dir;     /* NULL: the installed shaders ($SWELL_DATA_DIR overrides) */
+    int texture_unit_first;     /* the first texture unit swell binds; default 0 (units below
+                                 * are the application's, never touched) */
+    int texture_unit_count;     /* how many from there swell may bind, at least 3; default 0 =
+                                 * as many as the device has (fewer: fewer wave patterns
+                                 * shaded per pixel, the rest per vertex) */
 } swell_ocean_desc;
 
 /* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
@@ -180,9 +185,13 @@ typedef struct swell_view {
     unsigned flags;             /* enum swell_draw_flags */
 } swell_view;
 
-/* Draw the sea at time t_s into the framebuffer bound now. GL state: swell sets what it needs
- * (programs, buffers, textures on units 0..7 and up, blend off, depth test and write on,
- * culling off, the viewport) and leaves them changed; save what you rely on. */
+/* Draw the sea at time t_s into the framebuffer bound now, depth-tested and writing depth (so
+ * the application can draw after it and test against the sea). GL state: swell binds its
+ * programs, buffers and textures (on its units, swell_ocean_desc), sets blend, depth, cull,
+ * scissor and the viewport as it draws, and restores all of them, the vertex attributes 0-7,
+ * the active unit and the clear colour to what they were before the call (and on GLES 3 it
+ * draws with vertex array 0 bound, the application's bound again after). It never clears
+ * outside the viewport, and inside it only with SWELL_DRAW_CLEAR. */
 SWELL_API int swell_ocean_draw(swell_ocean *ocean, const swell_view *view, double t_s,
                                struct swell_err *err);
 /* Move the sun (re-bakes the sky map: not for every frame). */

@@ -16,6 +16,7 @@ struct swell_ocean {
     const struct swell_sea *sea;
     struct gpu gpu;
     struct renderer *renderer;
+    int unit0, units;           /* the texture units it may bind (swell_ocean_desc) */
 };
 
 #endif

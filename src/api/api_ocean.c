@@ -18,9 +18,13 @@ _Static_assert((int)SWELL_DETILE_AUTO == DETILE_MODE_AUTO &&
 _Static_assert(SWELL_TIER_GLES2_MIN - 1 == TIER_GLES2_MIN && SWELL_TIER_GLES3 - 1 == TIER_GLES3,
                "swell.h's tiers are gpu.h's plus one (0 = the best)");
 
-static int saved_units(const struct gpu *g)
+/* The texture units swell may bind, whose bindings a call saves and restores: from the first
+ * it was given, as many as it was given or (all it binds: 2 + 4 slots + 4 whitecap slots + 8
+ * vertex-stage tables + the lattice hash = 19) GL_STATE_UNITS. */
+static void save_state(const swell_ocean *o, struct gl_state *st)
 {
-    return g->caps.texture_units > 0 ? g->caps.texture_units : GL_STATE_UNITS;
+    int n = o->units > 0 ? o->units : GL_STATE_UNITS;
+    gl_state_save(st, o->unit0, n);
 }
 
 int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell_ocean **out,
@@ -49,9 +53,12 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .tables = &sea->tables, .shader_dir = d->shader_dir, .quality = d->quality,
         .geometry = d->geometry, .sun_elev_deg = d->sun_elev_deg,
         .sun_azim_deg = d->sun_azim_deg, .detile = d->detile,
+        .texture_unit_first = d->texture_unit_first, .texture_unit_count = d->texture_unit_count,
     };
     struct gl_state st;
-    gl_state_save(&st, GL_STATE_UNITS, 0);
+    o->unit0 = d->texture_unit_first;
+    o->units = d->texture_unit_count;
+    save_state(o, &st);
     int rc = renderer_open(&rd, &o->gpu, d->tier - 1, sea->tables.state.budget_bytes, NULL,
                            NULL, &o->renderer, err);
     gl_state_restore(&st);
@@ -116,7 +123,7 @@ int swell_ocean_draw(swell_ocean *o, const swell_view *v, double t_s, struct swe
     if (rc)
         return rc;
     struct gl_state st;
-    gl_state_save(&st, saved_units(&o->gpu), o->gpu.caps.context_major >= 3);
+    save_state(o, &st);
     rc = renderer_draw(o->renderer, &rv, t_s, err);
     gl_state_restore(&st);
     return rc;
@@ -130,7 +137,7 @@ int swell_ocean_set_sun(swell_ocean *o, float elev_deg, float azim_deg, struct s
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_set_sun: elevation %g deg must be in "
                           "(0, 90] and the azimuth finite", (double)elev_deg);
     struct gl_state st;
-    gl_state_save(&st, saved_units(&o->gpu), o->gpu.caps.context_major >= 3);
+    save_state(o, &st);
     int rc = renderer_set_sun(o->renderer, elev_deg, azim_deg, err);
     gl_state_restore(&st);
     return rc;

@@ -1,9 +1,19 @@
 /* glstate.c - save and restore what an embedded draw changes (glstate.h). */
 #include <GLES3/gl3.h>
+#include <string.h>
 #include "gl/glstate.h"
 
-void gl_state_save(struct gl_state *s, int units, int es3)
+/* The current context is GLES 3 or later ("OpenGL ES 3.2 Mesa ..."). */
+static int context_es3(void)
 {
+    const char *v = (const char *)glGetString(GL_VERSION);
+    const char *p = v ? strstr(v, "OpenGL ES ") : NULL;
+    return p && p[10] >= '3' && p[10] <= '9';
+}
+
+void gl_state_save(struct gl_state *s, int unit0, int units)
+{
+    int es3 = context_es3();
     s->es3 = es3;
     if (es3) {
         glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vertex_array);
@@ -14,9 +24,10 @@ void gl_state_save(struct gl_state *s, int units, int es3)
     glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &s->element_buffer);
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &s->framebuffer);
     glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
+    s->unit0 = unit0;
     s->units = units < GL_STATE_UNITS ? units : GL_STATE_UNITS;
     for (int u = 0; u < s->units; u++) {
-        glActiveTexture(GL_TEXTURE0 + (GLenum)u);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)(unit0 + u));
         glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->texture[u]);
     }
     glActiveTexture((GLenum)s->active_texture);
@@ -69,7 +80,7 @@ void gl_state_restore(const struct gl_state *s)
             glDisableVertexAttribArray(a);
     }
     for (int u = 0; u < s->units; u++) {
-        glActiveTexture(GL_TEXTURE0 + (GLenum)u);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)(s->unit0 + u));
         glBindTexture(GL_TEXTURE_2D, (GLuint)s->texture[u]);
     }
     glActiveTexture((GLenum)s->active_texture);

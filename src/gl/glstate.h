@@ -24,7 +24,7 @@ struct gl_state {
     int es3;                          /* GLES 3 context: the vertex array object saved too */
     GLint vertex_array;
     GLint program, array_buffer, element_buffer, framebuffer, active_texture;
-    int units;
+    int unit0, units;                 /* the units saved: unit0 .. unit0 + units - 1 */
     GLint texture[GL_STATE_UNITS];
     struct gl_attrib_state attrib[GL_STATE_ATTRIBS];
     GLboolean blend, depth_test, cull_face, scissor_test, depth_mask;
@@ -33,8 +33,9 @@ struct gl_state {
     GLint depth_func, viewport[4], scissor_box[4], unpack_alignment;
 };
 
-/* units: how many texture units to save (the renderer's count). es3: the context is GLES 3. */
-void gl_state_save(struct gl_state *s, int units, int es3);
+/* units: how many texture units to save from unit0 (the renderer's; at most GL_STATE_UNITS).
+ * The vertex array object too when the current context is GLES 3 or later. */
+void gl_state_save(struct gl_state *s, int unit0, int units);
 void gl_state_restore(const struct gl_state *s);
 
 #endif

@@ -47,7 +47,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
         pat[i][2] = 1.0f / pi->size_m;
         pat[i][3] = grid_band_wavelength(pi);
         for (int f = 0; f < 2; f++)
-            bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * i + f,
+            bind_tex(r, UNIT_PATTERNS + r->nfs + r->nwc + 2 * i + f,
               r->disp_tex[i][r->disp_ab[i][f]], u[VU_A0 + 2 * i + f]);
         float sh[3];
         detile_camera_shift(i, cam->pos[0], cam->pos[1], 1.0 / pi->size_m, sh);
@@ -56,7 +56,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
     }
     /* the atlas's hash on the unit after the displacement's (choose_vtf counts it) */
     if (renderer_detile(r))
-        bind_tex(UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
+        bind_tex(r, UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
           r->fresnel_tex, u[VU_DETILE_TEX]);
     float atlas[4];
     atlas_hash_frame(r, atlas);
@@ -183,7 +183,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         memcpy(sb[s], sl->slope->bias, sizeof(sb[s]));
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
-        bind_tex(UNIT_PATTERNS + s, chain_at(&sl->slope_tex, 0), u[OU_SLOPE_TEX0 + s]);
+        bind_tex(r, UNIT_PATTERNS + s, chain_at(&sl->slope_tex, 0), u[OU_SLOPE_TEX0 + s]);
         if (r->d.quality == QUALITY_HIGH) {
             /* the fetched patch's variance T (and below its foam memory's mean and variance)
              * in the constants: ocean.frag's slot adds only what depends on its taps */
@@ -191,7 +191,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
             cs[3] += sl->top_slope[3];
         }
         if (s < kw) {   /* kw <= nwc: whitecap textures exist for these (create_textures) */
-            bind_tex(UNIT_PATTERNS + r->nfs + s, chain_at(&sl->wc_tex, 0), u[OU_WC_TEX0 + s]);
+            bind_tex(r, UNIT_PATTERNS + r->nfs + s, chain_at(&sl->wc_tex, 0), u[OU_WC_TEX0 + s]);
             if (r->d.quality == QUALITY_HIGH) {
                 ck[0] += sl->top_k[0];
                 ck[1] += sl->top_k[1];
@@ -215,8 +215,8 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     atlas_hash_frame(r, atlas);
     glUniform4fv(u[OU_DETILE_ATLAS], 1, atlas);
     glUniform2fv(u[OU_FRESNEL_V], 1, r->vf.fresnel_uv_scale);
-    bind_tex(UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
-    bind_tex(UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
+    bind_tex(r, UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
+    bind_tex(r, UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
     glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));
     glUniform1f(u[OU_SKY_SIZE], r->vf.sky_map_size);
     glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
@@ -336,6 +336,8 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
 {
     const struct camera *user_cam = &v->cam;
     int width = v->width, height = v->height;
+    /* uploads bind on the active unit: one of the renderer's, never the application's */
+    glActiveTexture(GL_TEXTURE0 + (GLenum)r->d.texture_unit_first);
     /* The camera floats CAMERA_CLEARANCE_M above the surface the renderer draws under it (the
      * same displacement, sea.h), so no view is from under the water; the projected grid's
      * coverage argument (grid.c) rests on it. */
@@ -445,6 +447,6 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
             glDisableVertexAttribArray((GLuint)a);
         glDisable(GL_DEPTH_TEST);
     }
-    glActiveTexture(GL_TEXTURE0);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)r->d.texture_unit_first);
     return gpu_check("renderer_frame", err);
 }

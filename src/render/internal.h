@@ -242,7 +242,7 @@ unsigned low_foam_mask(const struct renderer *r);
 
 /* textures.c */
 void atlas_hash_frame(const struct renderer *r, float out[4]);
-void bind_tex(int unit, GLuint tex, GLint loc);
+void bind_tex(const struct renderer *r, int unit, GLuint tex, GLint loc);
 GLuint chain_at(const struct chain_tex *c, int l);
 void stream_disp(struct renderer *r, double t_s);
 void stream_textures(struct renderer *r, double t_s);

@@ -139,6 +139,16 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
         desc->geometry >= GEOMETRY_COUNT || desc->detile < 0 || desc->detile >= DETILE_MODE_COUNT)
         return swell_fail(err, SWELL_E_ARG, "renderer: quality %d / geometry %d / detile %d out "
                           "of range", desc->quality, desc->geometry, desc->detile);
+    GLint combined = 0;
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
+    int first = desc->texture_unit_first, count = desc->texture_unit_count;
+    if (first < 0 || count < 0 || (count > 0 && count < UNIT_PATTERNS + 1) ||
+        first + (count > 0 ? count : UNIT_PATTERNS + 1) > combined)
+        return swell_fail(err, SWELL_E_ARG, "renderer: texture units %d..%d: the device has "
+                          "%d (0..%d), and the sea needs %d at least", first,
+                          first + (count > 0 ? count : UNIT_PATTERNS + 1) - 1, (int)combined,
+                          (int)combined - 1, UNIT_PATTERNS + 1);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)first);   /* uploads: on the renderer's units */
     if (!(r = calloc(1, sizeof(*r))))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory");
     r->d = *desc;
@@ -273,6 +283,7 @@ int renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct 
     int rc = sky_bake(elev_deg, azim_deg, SKY_MAP_SIZE, &fresh, err);
     if (rc)
         return rc;
+    glActiveTexture(GL_TEXTURE0 + (GLenum)r->d.texture_unit_first);   /* the upload's unit */
     if (r->sky_tex.tex[0] && (rc = upload_sky(r, &fresh, err))) {
         sky_destroy(&fresh);
         return rc;

@@ -62,6 +62,11 @@ struct renderer_desc {
                                          * the sea, so a pixel neither covers shows (swell
                                          * --debug uncovered, the frame tests); default 0: a
                                          * dark sea colour */
+    int texture_unit_first;             /* the first texture unit the renderer binds; default
+                                         * 0. An embedding application keeps those below */
+    int texture_unit_count;             /* how many from there it may bind; default 0 = as
+                                         * many as the device has (fewer: fewer patterns in
+                                         * the fragment shader, the rest per vertex) */
     int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
                                          * naming the ocean program it is drawn with, no sky
                                          * (white): the screen's share of each program

@@ -175,7 +175,7 @@ int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_e
     glUniform3fv(r->su[SU_SKY_VIEW_SCALE], 2, &r->sky_view_scale[0][0]);
     glUniform4f(r->su[SU_SKY_SUN], r->sky.sun_dir[0], r->sky.sun_dir[1], r->sky.sun_dir[2],
                 r->haze.mie_g);
-    bind_tex(UNIT_SKY, r->sky_view_tex, r->su[SU_SKY_VIEW]);
+    bind_tex(r, UNIT_SKY, r->sky_view_tex, r->su[SU_SKY_VIEW]);
     glBindBuffer(GL_ARRAY_BUFFER, r->sky_vbo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->sky_ibo);
     glEnableVertexAttribArray(0);

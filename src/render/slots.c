@@ -31,6 +31,8 @@ void assign_patterns(struct renderer *r)
 {
     int order[SWELL_MAX_PATTERNS], n = r->t->patterns, breaks[SWELL_MAX_PATTERNS];
     int units = r->gpu->caps.texture_units > 0 ? r->gpu->caps.texture_units : 8;
+    if (r->d.texture_unit_count > 0 && r->d.texture_unit_count < units)
+        units = r->d.texture_unit_count;     /* the application keeps the rest */
     int high = r->d.quality == QUALITY_HIGH, fs, nwc = 0;
     for (int i = 0; i < n; i++)
         order[i] = i;
@@ -179,7 +181,9 @@ int choose_vtf(const struct renderer *r)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     /* a unit per loop frame of every pattern and one for the lattice hash (detile.h) */
-    if (combined < UNIT_PATTERNS + r->nfs + r->nwc + 2 * n + hash)
+    int need = UNIT_PATTERNS + r->nfs + r->nwc + 2 * n + hash;
+    if (combined < r->d.texture_unit_first + need ||
+        (r->d.texture_unit_count > 0 && r->d.texture_unit_count < need))
         return 0;
     for (int i = 0; i < n; i++) {
         const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);

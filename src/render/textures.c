@@ -46,8 +46,9 @@ GLuint chain_at(const struct chain_tex *c, int l)
     return c->tex[l < 0 ? 0 : l < c->levels ? l : c->levels - 1];
 }
 
-void bind_tex(int unit, GLuint tex, GLint loc)
+void bind_tex(const struct renderer *r, int unit, GLuint tex, GLint loc)
 {
+    unit += r->d.texture_unit_first;      /* the application's choice (renderer_desc) */
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glBindTexture(GL_TEXTURE_2D, tex);
     if (loc >= 0)

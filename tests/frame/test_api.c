@@ -305,6 +305,67 @@ static void test_query_threads(void **state)
     }
 }
 
+/* One frame of an ocean made with desc into px (the whole framebuffer, cleared by swell). */
+static int draw_into(const swell_ocean_desc *desc, uint8_t *px, struct swell_err *err)
+{
+    swell_ocean *o = NULL;
+    int rc = swell_ocean_create(g_sea, desc, &o, err);
+    if (rc)
+        return rc;
+    swell_view v;
+    float mvp[16];
+    app_view(&v, mvp, 10.0);
+    v.flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
+    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+    rc = swell_ocean_draw(o, &v, 4.0, err);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    swell_ocean_destroy(o);
+    return rc;
+}
+
+/* The texture units the application gives swell: the same picture from units 5 up as from 0
+ * (every binding and sampler moved together); too few is refused; three (no pattern in the
+ * fragment shader, all per vertex) still a sea. */
+static void test_texture_units(void **state)
+{
+    (void)state;
+    static uint8_t a[W * H * 4], b[W * H * 4];
+    struct swell_err err = { 0 };
+    swell_ocean_desc d = { .tier = SWELL_TIER_GLES3 };
+    if (draw_into(&d, a, &err))
+        fail_msg("units from 0: %s", err.msg);
+    d.texture_unit_first = 5;
+    if (draw_into(&d, b, &err))
+        fail_msg("units from 5: %s", err.msg);
+    assert_memory_equal(a, b, sizeof a);
+    d.texture_unit_count = 2;
+    assert_int_equal(draw_into(&d, b, &err), SWELL_E_ARG);
+    printf("2 units refused: %s\n", err.msg);
+    swell_ocean_desc few = { .tier = SWELL_TIER_GLES2_MIN, .texture_unit_first = 1,
+                             .texture_unit_count = 3 };
+    if (draw_into(&few, b, &err))
+        fail_msg("3 units: %s", err.msg);
+    /* the same sea, shaded with less per pixel: its mean within a quarter of the full one's,
+     * and waves in every row (not one flat colour) */
+    double ma = 0.0, mb = 0.0;
+    int flat_rows = 0;
+    for (int y = 0; y < H; y++) {
+        int lo = 255, hi = 0;
+        for (int x = 0; x < W; x++) {
+            const uint8_t *p = b + 4 * (W * y + x);
+            ma += a[4 * (W * y + x) + 1];
+            mb += p[1];
+            lo = p[1] < lo ? p[1] : lo;
+            hi = p[1] > hi ? p[1] : hi;
+        }
+        flat_rows += hi == lo;
+    }
+    printf("3 units: mean green %.1f against %.1f with every unit, %d flat rows\n",
+           mb / (W * H), ma / (W * H), flat_rows);
+    assert_true(mb > 0.75 * ma && mb < 1.33 * ma);
+    assert_int_equal(flat_rows, 0);
+}
+
 /* The application's pixels outside the viewport and above the sea stay; the state stays. */
 static void test_embedding_keeps_app(void **state)
 {
@@ -417,6 +478,7 @@ int main(void)
         cmocka_unit_test(test_height_gles2_min),
         cmocka_unit_test(test_height_gles3),
         cmocka_unit_test(test_embedding_keeps_app),
+        cmocka_unit_test(test_texture_units),
     };
     rc = cmocka_run_group_tests(tests, NULL, NULL);
     swell_sea_destroy(g_sea);
