@@ -93,6 +93,11 @@ static int view_camera(const swell_view *v, struct camera *c, struct swell_err *
     if (!(n > 0.0) || !(f > n) || !isfinite(f))
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the projection's clip planes "
                           "(%g, %g m) are not 0 < near < far", n, f);
+    if (!isfinite(v->camera_pos[0]) || !isfinite(v->camera_pos[1]) ||
+        !isfinite(v->camera_pos[2]) || fabs(v->camera_pos[2]) > 5e5)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: camera_pos (%g, %g, %g) must be "
+                          "finite, its altitude within 500 km", v->camera_pos[0],
+                          v->camera_pos[1], v->camera_pos[2]);
     memset(c, 0, sizeof *c);
     for (int k = 0; k < 3; k++)
         c->pos[k] = v->camera_pos[k];
