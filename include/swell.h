@@ -153,6 +153,10 @@ typedef struct swell_ocean_desc {
     float sun_elev_deg;         /* sun elevation above the horizon, (0, 90]; default 30 */
     float sun_azim_deg;         /* sun azimuth, CCW from east; default 0 */
     const char *shader_dir;     /* NULL: the installed shaders ($SWELL_DATA_DIR overrides) */
+    int linear_output;          /* 1: write linear radiance times the exposure (no display
+                                 * transform; a float or sRGB target and your own tone map);
+                                 * default 0: display-ready colour (Reinhard on the largest
+                                 * channel, then gamma 2) */
     int texture_unit_first;     /* the first texture unit swell binds; default 0 (units below
                                  * are the application's, never touched) */
     int texture_unit_count;     /* how many from there swell may bind, at least 3; default 0 =

@@ -153,5 +153,9 @@ vec3 tone_map(vec3 x)
     // Clamped before the division: at the sun disc x can reach fp16's infinity, and inf / inf
     // came out as a dark NaN dot where the sun should be brightest.
     x = clamp(x, vec3(0.0), vec3(1.0e4));
+#ifdef SWELL_LINEAR_OUT
+    return x;   // the application's own display transform follows (renderer_desc linear_output)
+#else
     return sqrt(x * (1.0 / (1.0 + max(max(x.r, x.g), x.b))));
+#endif
 }

@@ -5,7 +5,7 @@
 // scattering as the baked sky map), tone-mapped. From the sea it is the sky map's sky; from
 // orbit black space over a glowing limb. With SUN_DISC: the sun's disc (angular radius
 // 0.267 deg) drawn as a quad the renderer places, tone-mapped sun plus sky.
-// validate: | SUN_DISC
+// validate: | SUN_DISC | SWELL_LINEAR_OUT
 #include "common.glsl"
 
 #ifdef SUN_DISC

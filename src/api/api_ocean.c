@@ -54,6 +54,7 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .geometry = d->geometry, .sun_elev_deg = d->sun_elev_deg,
         .sun_azim_deg = d->sun_azim_deg, .detile = d->detile,
         .texture_unit_first = d->texture_unit_first, .texture_unit_count = d->texture_unit_count,
+        .linear_output = d->linear_output,
     };
     struct gl_state st;
     o->unit0 = d->texture_unit_first;

@@ -93,10 +93,11 @@ int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = (int)(sizeof(ocean_attribs) / sizeof(ocean_attribs[0]));
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s",
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s",
                              k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
                              r->run_lod ? " SWELL_RUN_LOD" : "",
-                             renderer_detile(r) ? "" : " SWELL_NO_DETILE");
+                             renderer_detile(r) ? "" : " SWELL_NO_DETILE",
+                             r->d.linear_output ? " SWELL_LINEAR_OUT" : "");
             int v = VARIANT(k, kw);
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",
@@ -120,6 +121,7 @@ int build_programs(struct renderer *r, struct swell_err *err)
     sd.uniform_locations = r->su;
     sd.attribs = sky_attribs;
     sd.attrib_count = 1;
+    sd.defines = r->d.linear_output ? "SWELL_LINEAR_OUT" : NULL;
     if ((rc = shader_program_build(&sd, &r->skyp, err)))
         return rc;
     sd.defines = "SUN_DISC";

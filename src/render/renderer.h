@@ -62,6 +62,10 @@ struct renderer_desc {
                                          * the sea, so a pixel neither covers shows (swell
                                          * --debug uncovered, the frame tests); default 0: a
                                          * dark sea colour */
+    int linear_output;                  /* 1: write the radiance times the exposure, linear,
+                                         * for the application to tone-map (an RGBA8 target
+                                         * clips it at 1); default 0: the display transform
+                                         * (optics/tonemap.h) */
     int texture_unit_first;             /* the first texture unit the renderer binds; default
                                          * 0. An embedding application keeps those below */
     int texture_unit_count;             /* how many from there it may bind; default 0 = as

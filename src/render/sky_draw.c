@@ -197,7 +197,11 @@ int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_e
         float sun_rad[3];
         for (int c = 0; c < 3; c++)
             sun_rad[c] = r->exposure * r->sky_view_sun[c] / 6.8e-5f;
-        tone_map_rgb(sun_rad, sun_disp);
+        if (r->d.linear_output)
+            for (int c = 0; c < 3; c++)
+                sun_disp[c] = fminf(sun_rad[c], 1.0e4f);  /* as tone_map's linear output */
+        else
+            tone_map_rgb(sun_rad, sun_disp);
         glUseProgram(r->sunp.program);
         glUniform4fv(r->sunu[SU_SUN_NDC], 1, ndc);
         glUniform3fv(r->sunu[SU_SUN_DISPLAY], 1, sun_disp);

@@ -28,6 +28,7 @@
 #include <GLES2/gl2.h>
 #include "frame/frame_util.h"
 #include "geometry/sea.h"
+#include "optics/tonemap.h"
 #include "api/api.h"
 #include "swell.h"
 
@@ -366,6 +367,64 @@ static void test_texture_units(void **state)
     assert_int_equal(flat_rows, 0);
 }
 
+/* linear_output: the radiance without the display transform. Drawn both ways into RGBA8, every
+ * pixel whose linear value is neither clipped nor too dark for 8 bits maps through the C tone
+ * map (optics/tonemap.h) onto the display pixel. */
+static void test_linear_output(void **state)
+{
+    (void)state;
+    static uint8_t disp[W * H * 4], lin[W * H * 4];
+    GLuint fbo, rb;
+    struct swell_err err = { 0 };
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, 0x8058 /* GL_RGBA8: GLES 3 */, W, H);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    assert_int_equal(glCheckFramebufferStatus(GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
+    for (int k = 0; k < 2; k++) {
+        swell_ocean *o = NULL;
+        swell_ocean_desc d = { .tier = SWELL_TIER_GLES3, .linear_output = k };
+        if (swell_ocean_create(g_sea, &d, &o, &err))
+            fail_msg("swell_ocean_create: %s", err.msg);
+        swell_view v;
+        float mvp[16];
+        app_view(&v, mvp, 0.0);
+        v.flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        if (swell_ocean_draw(o, &v, 6.0, &err))
+            fail_msg("swell_ocean_draw: %s", err.msg);
+        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, k ? lin : disp);
+        swell_ocean_destroy(o);
+    }
+    int used = 0, bad = 0;
+    double worst = 0.0;
+    for (int i = 0; i < W * H; i++) {
+        float x[3], y[3];
+        int m = 0;
+        for (int c = 0; c < 3; c++) {
+            x[c] = lin[4 * i + c] / 255.0f;
+            m = lin[4 * i + c] > m ? lin[4 * i + c] : m;
+        }
+        if (m < 40 || m > 240)
+            continue;                           /* too dark for 8 bits, or clipped */
+        tone_map_rgb(x, y);
+        used++;
+        for (int c = 0; c < 3; c++) {
+            double d = fabs(y[c] * 255.0 - disp[4 * i + c]);
+            worst = d > worst ? d : worst;
+            bad += d > 4.0;
+        }
+    }
+    printf("linear output: %d pixels compared, the tone map of the linear within %.1f/255 of the "
+           "display (%d channels over 4)\n", used, worst, bad);
+    assert_true(used > W * H / 4);
+    assert_int_equal(bad, 0);
+    glDeleteRenderbuffers(1, &rb);
+    glDeleteFramebuffers(1, &fbo);
+}
+
 /* The application's pixels outside the viewport and above the sea stay; the state stays. */
 static void test_embedding_keeps_app(void **state)
 {
@@ -479,6 +538,7 @@ int main(void)
         cmocka_unit_test(test_height_gles3),
         cmocka_unit_test(test_embedding_keeps_app),
         cmocka_unit_test(test_texture_units),
+        cmocka_unit_test(test_linear_output),
     };
     rc = cmocka_run_group_tests(tests, NULL, NULL);
     swell_sea_destroy(g_sea);
