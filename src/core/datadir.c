@@ -109,7 +109,7 @@ int data_dir_candidates(char (*dirs)[4096], int max)
 int data_dir_find(const char *sub, char *out, size_t cap, struct swell_err *err)
 {
     char dirs[DATADIR_MAX_CANDIDATES][4096], tried[2048] = "";
-    int n = data_dir_candidates(dirs, DATADIR_MAX_CANDIDATES);
+    int n = data_dir_candidates(dirs, (int)(sizeof dirs / sizeof dirs[0]));
     size_t used = 0;
     for (int i = 0; i < n; i++) {
         char path[4096];
@@ -139,8 +139,8 @@ int data_dir_find(const char *sub, char *out, size_t cap, struct swell_err *err)
 
 void data_dir_usage(FILE *f)
 {
-    char dirs[2][4096];
-    int n = data_dir_candidates(dirs, DATADIR_MAX_CANDIDATES);
+    char dirs[DATADIR_MAX_CANDIDATES][4096];
+    int n = data_dir_candidates(dirs, (int)(sizeof dirs / sizeof dirs[0]));
     fprintf(f, "Data: the shaders (%s/) and presets (%s/) are read from the first of\n",
             DATADIR_SHADERS, DATADIR_PRESETS);
     for (int i = 0; i < n; i++)
