@@ -155,7 +155,9 @@ int fs_read_file(const char *path, size_t max_bytes, uint8_t **out, size_t *out_
     *out_len = 0;
     uint8_t *buf = NULL;
     int rc = 0;
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    /* O_NONBLOCK: a FIFO (or a device) in place of a file must not hang the open; it is
+     * refused below, and a regular file's reads do not care (issue 17) */
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0)
         return swell_fail(err, SWELL_E_IO, "cannot open '%s': %s", path, strerror(errno));
     struct stat st;
@@ -164,7 +166,8 @@ int fs_read_file(const char *path, size_t max_bytes, uint8_t **out, size_t *out_
         goto fail;
     }
     if (!S_ISREG(st.st_mode)) {
-        rc = swell_fail(err, SWELL_E_IO, "'%s' is not a regular file", path);
+        rc = swell_fail(err, SWELL_E_IO, "'%s' is not a regular file (a FIFO, device or "
+                        "directory): replace it with the file itself", path);
         goto fail;
     }
     if (st.st_size < 0 || (uint64_t)st.st_size > max_bytes) {

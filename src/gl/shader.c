@@ -5,10 +5,13 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/datadir.h"
 #include "core/fsutil.h"
@@ -57,9 +60,21 @@ static int read_file(const char *dir, const char *name, char **out, struct swell
     *out = NULL;
     char path[4096];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    /* O_NONBLOCK and a regular file only: a FIFO in place of a shader must not hang (issue 17) */
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0)
         return swell_fail(err, SWELL_E_IO, "shader: cannot open %s: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        return swell_fail(err, SWELL_E_IO, "shader: %s is not a regular file (a FIFO, device or "
+                          "directory): replace it with the shader itself", path);
+    }
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        close(fd);
+        return swell_fail(err, SWELL_E_IO, "shader: cannot open %s: %s", path, strerror(errno));
+    }
     struct membuf b = { 0 };
     char chunk[4096];
     size_t n;

@@ -9,7 +9,9 @@
 #  3. a bake killed with SIGKILL at random points, fresh and over an older set: whenever
 #     inspect accepts the directory, it is byte-identical to a reference bake;
 #  4. an unwritable output (read-only tmpfs; a parent that is a regular file) and a full one
-#     (a tiny tmpfs): precise message, exit 1, no file the loader accepts, no temp file.
+#     (a tiny tmpfs): precise message, exit 1, no file the loader accepts, no temp file;
+#  5. a FIFO in place of a manifest, a table, a preset or a shader: refused at once with what
+#     it is (it had hung both programs forever, issue 17), nothing written.
 # Mounting needs root and CAP_SYS_ADMIN; where it is refused the mount cases say why and are
 # skipped, except under CI=true where that is a failure.
 set -u
@@ -358,6 +360,39 @@ else
         swell --platform surfaceless --size 256x256 --frames 1 --tables "$T/good" --out "$T/full/x.png"
     check "  ... no PNG, no temp file" sh -c "! [ -e '$T/full/x.png' ] && ! ls -a '$T/full' | grep -q tmp"
 fi
+
+# ---- 5. non-regular files: a FIFO opened for reading blocks until a writer comes -------------
+
+# fifo_case NAME RC COMMAND...: exit RC within 30 s naming a non-regular file, nothing written
+fifo_case() {
+    name=$1; want=$2; shift 2
+    out=$(timeout 30 "$@" 2>&1); rc=$?
+    if [ $rc -eq "$want" ] && printf '%s' "$out" | grep -q "not a regular file"; then
+        ok "$name: $(printf '%s' "$out" | tail -n 1)"
+    else bad "$name: exit $rc (124: hung), wanted $want and 'not a regular file': $out"; fi
+}
+cp -r "$T/good" "$T/fifo_manifest"
+rm "$T/fifo_manifest/manifest.swell"; mkfifo "$T/fifo_manifest/manifest.swell"
+fifo_case "inspect with a FIFO as the manifest" 1 "$B" inspect "$T/fifo_manifest"
+# swell itself (timeout cannot run the shell function), its sanitizer preload as the function has
+swell_env="env ${SWELL_SAN_PRELOAD:+LD_PRELOAD=$SWELL_SAN_PRELOAD}"
+# shellcheck disable=SC2086
+fifo_case "swell --tables with a FIFO as the manifest" 1 $swell_env "$S" --platform surfaceless --size 64x64 --frames 1 --tables "$T/fifo_manifest" --out "$T/fifo.png"
+cp -r "$T/good" "$T/fifo_table"
+ktx=$(ls "$T/fifo_table"/*.ktx | head -n 1)
+rm "$ktx"; mkfifo "$ktx"
+fifo_case "inspect with a FIFO as a table" 1 "$B" inspect "$T/fifo_table"
+# shellcheck disable=SC2086
+fifo_case "swell --tables with a FIFO as a table" 1 $swell_env "$S" --platform surfaceless --size 64x64 --frames 1 --tables "$T/fifo_table" --out "$T/fifo.png"
+mkfifo "$T/fifo.preset"
+fifo_case "bake with a FIFO as the preset" 2 "$B" --preset "$T/fifo.preset" --out "$T/fifo_bake"
+mkdir -p "$T/fifo_data"
+cp -r shaders_gles tables "$T/fifo_data/"
+rm "$T/fifo_data/shaders_gles/ocean.frag"; mkfifo "$T/fifo_data/shaders_gles/ocean.frag"
+# shellcheck disable=SC2086
+fifo_case "swell with a FIFO as a shader" 1 $swell_env SWELL_DATA_DIR="$T/fifo_data" "$S" \
+    --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" --out "$T/fifo.png"
+check "  ... nothing written" sh -c "! [ -e '$T/fifo.png' ] && ! [ -e '$T/fifo_bake' ]"
 
 echo "$checks checks, $fails failed"
 [ $fails -eq 0 ]
