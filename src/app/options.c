@@ -96,6 +96,8 @@ static void usage(FILE *f)
 /* The --out text: plain, or exactly one %d conversion with optional 0 flag and width; "%%" is a
  * literal percent. Anything else could read arguments that are not there. Returns the number of
  * conversions, or -1 if the pattern is not allowed. */
+#define OUT_MAX_WIDTH 32       /* digits a frame number may be padded to */
+
 int options_out_conversions(const char *s)
 {
     int n = 0;
@@ -105,8 +107,13 @@ int options_out_conversions(const char *s)
         p++;
         if (*p == '%')
             continue;
-        while (*p >= '0' && *p <= '9')
+        long width = 0;
+        while (*p >= '0' && *p <= '9') {
+            width = 10 * width + (*p - '0');
+            if (width > OUT_MAX_WIDTH)
+                return -1;      /* printf's width overflowed into one file for every frame */
             p++;
+        }
         if (*p != 'd')
             return -1;
         n++;
@@ -175,7 +182,8 @@ int options_parse(int argc, char **argv, struct options *o)
             size_t len = strlen(v);
             if (!v[0] || options_out_conversions(v) < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--out: '%s' is not a file name or a pattern "
-                               "with one %%d conversion (e.g. out/frame%%04d.png)", v);
+                               "with one %%d conversion, padded to at most %d digits (e.g. "
+                               "out/frame%%04d.png)", v, OUT_MAX_WIDTH);
             else if (len < 4 || strcasecmp(v + len - 4, ".png") != 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--out: '%s' does not end in .png (frames are "
                                "written as PNG only)", v);

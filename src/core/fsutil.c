@@ -85,6 +85,25 @@ static int fsync_dir(const char *path, struct swell_err *err)
     return 0;
 }
 
+/* The process's umask without changing it (umask(2) can only set it): /proc's Umask line,
+ * else the umask(2) round trip (not thread-safe, the kernel has said it since 4.7). */
+static mode_t process_umask(void)
+{
+    FILE *f = fopen("/proc/self/status", "re");
+    char line[256];
+    unsigned m = 0;
+    int found = 0;
+    while (f && !found && fgets(line, sizeof line, f))
+        found = sscanf(line, "Umask: %o", &m) == 1;
+    if (f)
+        fclose(f);
+    if (found)
+        return (mode_t)m;
+    mode_t old = umask(022);
+    umask(old);
+    return old;
+}
+
 int fs_write_atomic(const char *path, const void *data, size_t len, struct swell_err *err)
 {
     char tmp[PATH_MAX];
@@ -110,8 +129,8 @@ int fs_write_atomic(const char *path, const void *data, size_t len, struct swell
         p += w;
         left -= (size_t)w;
     }
-    /* mkstemp makes 0600 files; tables are data anyone may read. */
-    if (fchmod(fd, 0644) != 0) {
+    /* mkstemp makes 0600 files; a file written here gets what open(0666) would: the umask's */
+    if (fchmod(fd, 0666 & ~process_umask()) != 0) {
         rc = swell_fail(err, SWELL_E_IO, "cannot chmod '%s': %s", tmp, strerror(errno));
         goto fail;
     }

@@ -121,6 +121,7 @@ values swell --fps 0 -30 0.09 1001 nan inf 1e300 abc ""
 values swell --time nan inf -inf 1e300 -1e300 abc ""
 values swell --duration 0 -1 nan inf 1e300 abc ""
 values swell --out "" "$T/never/x%d%d.png" "$T/never/x%s.png" "$T/never/x%n.png" \
+    "$T/never/x%2147483648d.png" "$T/never/x%033d.png" \
     "$T/never/x.jpg" "$T/never/x"
 values swell --tables ""
 values swell --device ""
@@ -393,6 +394,18 @@ rm "$T/fifo_data/shaders_gles/ocean.frag"; mkfifo "$T/fifo_data/shaders_gles/oce
 fifo_case "swell with a FIFO as a shader" 1 $swell_env SWELL_DATA_DIR="$T/fifo_data" "$S" \
     --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" --out "$T/fifo.png"
 check "  ... nothing written" sh -c "! [ -e '$T/fifo.png' ] && ! [ -e '$T/fifo_bake' ]"
+
+# ---- 6. the umask: files written as open(0666) would, the umask taking its bits -------------
+for m in 027 002; do
+    rm -rf "$T/umask$m"
+    # shellcheck disable=SC2086
+    (umask $m && "$B" $SMALL --out "$T/umask$m") >/dev/null 2>&1 || bad "bake with umask $m"
+    want=$(printf '%o' $((0666 & ~0$m)))
+    got=$(stat -c %a "$T/umask$m/manifest.swell" 2>/dev/null)
+    modes=$(stat -c %a "$T/umask$m"/*.ktx 2>/dev/null | sort -u | tr '\n' ' ')
+    check "bake under umask $m: manifest $got, tables $modes(want $want)" \
+        sh -c "[ '$got' = '$want' ] && [ '$modes' = '$want ' ]"
+done
 
 echo "$checks checks, $fails failed"
 [ $fails -eq 0 ]
