@@ -9,20 +9,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <time.h>
 
 #include "bake/bake.h"
 #include "app/bench.h"
 #include "app/options.h"
-#include "core/args.h"
-#include "core/datadir.h"
-#include "swell.h"
 #include "core/camera.h"
 #include "gl/gpu.h"
 #include "core/image.h"
 #include "platform/input.h"
-#include "core/parse.h"
 #include "platform/platform.h"
 #include "core/preset.h"
 #include "render/renderer.h"
