@@ -22,8 +22,8 @@ FUZZ_FLAGS ?=
 
 FUZZ_TARGETS := fuzz_ktx fuzz_manifest fuzz_preset
 # Only the loaders and what they call: the GL modules are not fuzzed, so they are not built.
-FUZZ_LIB_SRC := $(addprefix src/core/,datadir.c err.c fsutil.c kv.c preset.c seastate.c) \
-                $(addprefix src/tables/,ktx.c tables.c tables_io.c)
+FUZZ_LIB_SRC := $(addprefix src/core/,datadir.c err.c fsutil.c kv.c parse.c preset.c seastate.c) \
+                $(addprefix src/tables/,ktx.c set_check.c tables.c tables_io.c)
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Wno-unused-parameter -O1 -g \
                $(FUZZ_SAN) -Iinclude -Isrc -I$(BUILD)/gen -Itests/fuzz

@@ -30,7 +30,6 @@
 #include "bake/spectrum.h"
 #include "bake/whitecap.h"
 
-#define FRESNEL_SIZE 64
 #define FOAM_MIN_PATTERN_M 16.0f
 
 struct size_choice { int n_fs, frames; };
@@ -70,10 +69,14 @@ uint64_t bake_resident_bytes(int patterns, int n_fs)
 
 uint64_t bake_table_bytes(int patterns, int n_fs, int n_geo, int frames)
 {
-    uint64_t per_pattern = (uint64_t)frames * (2 * rgba8_chain_bytes(n_fs, ilog2(n_fs) + 1) +
-                                               (uint64_t)n_geo * (uint64_t)n_geo * 4);
-    uint64_t fresnel = 2ull * FRESNEL_SIZE * FRESNEL_SIZE * 4;
-    return (uint64_t)patterns * per_pattern + fresnel;
+    struct seastate s = { .patterns = patterns, .size_fs = n_fs, .size_geo = n_geo,
+                          .frames = frames };
+    struct swell_table shape[SWELL_MAX_TABLES];
+    int n = tables_layout(&s, shape);
+    uint64_t bytes = 0;
+    for (int i = 0; i < n; i++)
+        bytes += table_bytes(&shape[i]);
+    return bytes;
 }
 
 static uint64_t total_bytes(const struct seastate *s, int n_fs, int frames)
@@ -138,21 +141,12 @@ static void pattern_work_free(struct pattern_work *w)
     memset(w, 0, sizeof *w);
 }
 
-static int add_table(struct swell_tables *out, const char *name, int kind, int pattern, int w,
-                     int h, int layers, int levels, const float *chain, struct swell_err *err)
+/* Quantise chain into the next table of the set's layout (tables_layout: name and geometry). */
+static int add_table(struct swell_tables *out, const struct swell_table *shape, const float *chain,
+                     struct swell_err *err)
 {
-    if (out->count >= SWELL_MAX_TABLES)
-        return swell_fail(err, SWELL_E_ARG, "too many tables (max %d)", SWELL_MAX_TABLES);
     struct swell_table *t = &out->table[out->count];
-    memset(t, 0, sizeof *t);
-    snprintf(t->name, sizeof t->name, "%s", name);
-    t->kind = kind;
-    t->pattern = pattern;
-    t->format = FORMAT_RGBA8;
-    t->width = w;
-    t->height = h;
-    t->layers = layers;
-    t->levels = levels;
+    *t = *shape;
     int r = quantize_table(t, chain, err);
     if (r) {
         free(t->data);
@@ -395,36 +389,35 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
     /* Tables: per pattern slope + whitecap (mipmapped), displacement (geometry size) */
     progress(opts, 0.95, "quantise");
     int geo_level = ilog2(n / s.size_geo);
+    struct swell_table shape[SWELL_MAX_TABLES];
+    int shapes = tables_layout(&s, shape);   /* slope, whitecap, disp per pattern; Fresnel */
     for (int i = 0; i < s.patterns; i++) {
-        char name[32];
         quantize_build_mips(work[i].slope, n, n, F, levels);
         quantize_build_mips(work[i].white, n, n, F, levels);
-        snprintf(name, sizeof name, "slope_p%d", i);
-        if ((r = add_table(out, name, TABLE_SLOPE, i, n, n, F, levels, work[i].slope, err)))
-            goto fail;
-        snprintf(name, sizeof name, "whitecap_p%d", i);
-        if ((r = add_table(out, name, TABLE_WHITECAP, i, n, n, F, levels, work[i].white, err)))
+        if ((r = add_table(out, &shape[out->count], work[i].slope, err)) ||
+            (r = add_table(out, &shape[out->count], work[i].white, err)))
             goto fail;
         /* displacement: the box-filtered level of the fine grid at the geometry size */
         quantize_build_mips(work[i].disp, n, n, F, geo_level + 1);
         size_t off = quantize_chain_floats(n, n, F, geo_level);
-        snprintf(name, sizeof name, "disp_p%d", i);
-        if ((r = add_table(out, name, TABLE_DISP, i, s.size_geo, s.size_geo, F, 1,
-                           work[i].disp + off, err)))
+        if ((r = add_table(out, &shape[out->count], work[i].disp + off, err)))
             goto fail;
         pattern_work_free(&work[i]);
     }
-
-    if (out->count + 2 > SWELL_MAX_TABLES) {
-        r = swell_fail(err, SWELL_E_ARG, "too many tables");
-        goto fail;
-    }
-    if ((r = fresnel_hu_table(FRESNEL_SIZE, &out->table[out->count], err)))
+    if ((r = fresnel_hu_table(TABLES_FRESNEL_SIZE, &out->table[out->count], err)))
         goto fail;
     out->count++;
-    if ((r = fresnel_eff_table(FRESNEL_SIZE, &out->table[out->count], err)))
+    if ((r = fresnel_eff_table(TABLES_FRESNEL_SIZE, &out->table[out->count], err)))
         goto fail;
     out->count++;
+    for (int i = 0; i < shapes; i++)   /* the Fresnel tables name and size themselves */
+        if (out->count != shapes || strcmp(out->table[i].name, shape[i].name) != 0 ||
+            out->table[i].width != shape[i].width || out->table[i].levels != shape[i].levels) {
+            r = swell_fail(err, SWELL_E_ARG, "bake: table %d is '%s', the layout says '%s' "
+                           "(src/tables/tables.c tables_layout and the bake disagree)", i,
+                           out->table[i].name, shape[i].name);
+            goto fail;
+        }
 
     progress(opts, 1.0, "done");
     return 0;

@@ -231,8 +231,13 @@ fail:
 
 uint32_t fs_crc32(const void *data, size_t n)
 {
+    return fs_crc32_more(0, data, n);
+}
+
+uint32_t fs_crc32_more(uint32_t crc, const void *data, size_t n)
+{
     const uint8_t *p = data;
-    uLong c = crc32(0L, Z_NULL, 0);
+    uLong c = crc;
     while (n > 0) {
         uInt chunk = n > 0x40000000u ? 0x40000000u : (uInt)n;
         c = crc32(c, p, chunk);

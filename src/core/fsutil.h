@@ -43,5 +43,7 @@ void membuf_add(struct membuf *b, const void *data, size_t n);
 
 /* zlib CRC-32 of n bytes (any length: zlib takes uInt, so large buffers go in pieces). */
 uint32_t fs_crc32(const void *data, size_t n);
+/* Continue a crc32: fs_crc32_more(fs_crc32(a, n), b, m) is the crc32 of a then b. */
+uint32_t fs_crc32_more(uint32_t crc, const void *data, size_t n);
 
 #endif

@@ -66,7 +66,7 @@ static int full_chain(uint32_t w, uint32_t h)
 
 /* ---- writer --------------------------------------------------------------------------- */
 
-#define KV_KEYS 8
+#define KV_KEYS 9
 
 struct kv_pair {
     const char *key;
@@ -111,6 +111,7 @@ int ktx_write_memory(const struct swell_table *t, uint8_t **out, size_t *out_len
         {"swell.name", ""},
         {"swell.pattern", ""},
         {"swell.scale", ""},
+        {"swell.set", ""},
         {"swell.version", ""},
     };
     fmt4(kv[1].value, sizeof kv[1].value, t->bias);
@@ -119,7 +120,8 @@ int ktx_write_memory(const struct swell_table *t, uint8_t **out, size_t *out_len
     snprintf(kv[4].value, sizeof kv[4].value, "%s", t->name);
     snprintf(kv[5].value, sizeof kv[5].value, "%d", t->pattern);
     fmt4(kv[6].value, sizeof kv[6].value, t->scale);
-    snprintf(kv[7].value, sizeof kv[7].value, "%d", KTX_SWELL_VERSION);
+    snprintf(kv[7].value, sizeof kv[7].value, "0x%08x", t->set_id);
+    snprintf(kv[8].value, sizeof kv[8].value, "%d", KTX_SWELL_VERSION);
 
     size_t kv_bytes = 0;
     for (int i = 0; i < KV_KEYS; i++)
@@ -180,7 +182,7 @@ struct found {
 
 static const char *const read_keys[KV_KEYS] = {
     "KTXorientation", "swell.bias", "swell.crc32", "swell.kind", "swell.name", "swell.pattern",
-    "swell.scale", "swell.version",
+    "swell.scale", "swell.set", "swell.version",
 };
 
 static int parse_floats4(const char *s, float v[4])
@@ -265,21 +267,30 @@ static int read_kv(const uint8_t *p, uint32_t n, const char *name, struct found 
     return 0;
 }
 
+/* "0x" and exactly 8 lower-case hex digits, as the writer puts them. */
+static int parse_hex32(const char *c, uint32_t *out)
+{
+    if (strlen(c) != 10 || c[0] != '0' || c[1] != 'x' || strspn(c + 2, "0123456789abcdef") != 8)
+        return -1;
+    *out = (uint32_t)strtoul(c + 2, NULL, 16);
+    return 0;
+}
+
 static int check_meta(const struct found *f, const char *name, struct swell_table *t,
                       uint32_t *crc_out, struct swell_err *err)
 {
+    long v = 0;   /* the version first: another version may have other keys */
+    if (f->value[8] && parse_long(f->value[8], 0, 1000000, &v) != 0)
+        return swell_fail(err, SWELL_E_FORMAT, "%s: swell.version: '%.32s' is not a number",
+                          name, f->value[8]);
+    if (f->value[8] && v != KTX_SWELL_VERSION)
+        return swell_fail(err, SWELL_E_VERSION, "%s: swell.version is %ld, this build reads "
+                          "%d; re-bake the tables with this swell-bake", name, v,
+                          KTX_SWELL_VERSION);
     for (int i = 1; i < KV_KEYS; i++)
         if (!f->value[i])
             return swell_fail(err, SWELL_E_FORMAT, "%s: key/value data: missing key '%s'; not "
                               "a swell table file", name, read_keys[i]);
-    long v = 0;
-    if (parse_long(f->value[7], 0, 1000000, &v) != 0)
-        return swell_fail(err, SWELL_E_FORMAT, "%s: swell.version: '%.32s' is not a number",
-                          name, f->value[7]);
-    if (v != KTX_SWELL_VERSION)
-        return swell_fail(err, SWELL_E_VERSION, "%s: swell.version is %ld, this build reads "
-                          "%d; re-bake the tables with this swell-bake", name, v,
-                          KTX_SWELL_VERSION);
     if (f->value[0] && strcmp(f->value[0], "S=r,T=u") != 0)
         return swell_fail(err, SWELL_E_FORMAT, "%s: KTXorientation: '%.32s', expected "
                           "'S=r,T=u'", name, f->value[0]);
@@ -310,11 +321,12 @@ static int check_meta(const struct found *f, const char *name, struct swell_tabl
     if (parse_floats4(f->value[1], t->bias) != 0)
         return swell_fail(err, SWELL_E_FORMAT, "%s: swell.bias: '%.80s' is not four finite "
                           "floats", name, f->value[1]);
-    const char *c = f->value[2];
-    if (strlen(c) != 10 || c[0] != '0' || c[1] != 'x' || strspn(c + 2, "0123456789abcdef") != 8)
+    if (parse_hex32(f->value[2], crc_out) != 0)
         return swell_fail(err, SWELL_E_FORMAT, "%s: swell.crc32: '%.32s' is not 0x + 8 lower "
-                          "case hex digits", name, c);
-    *crc_out = (uint32_t)strtoul(c + 2, NULL, 16);
+                          "case hex digits", name, f->value[2]);
+    if (parse_hex32(f->value[7], &t->set_id) != 0)
+        return swell_fail(err, SWELL_E_FORMAT, "%s: swell.set: '%.32s' is not 0x + 8 lower "
+                          "case hex digits", name, f->value[7]);
     return 0;
 }
 

@@ -1,11 +1,13 @@
 /* ktx.h - one struct swell_table <-> one KTX 1.1 file (Khronos KTX File Format Specification
  * 1.1), written little-endian, with swell's metadata in the key/value block:
- *     swell.version  "1"               (another value: SWELL_E_VERSION)
+ *     swell.version  "2"               (another value: SWELL_E_VERSION; 2 added swell.set)
  *     swell.name     table name        ([a-z0-9_], 1..31 chars)
  *     swell.kind     "slope", ...      (table_kind_name)
  *     swell.pattern  "-1".."3"
  *     swell.scale, swell.bias  four floats "%.9g %.9g %.9g %.9g" (round-trip exact)
  *     swell.crc32    "0x%08x", zlib crc32 of the image data exactly as in table->data
+ *     swell.set      "0x%08x", table->set_id: the sea state the set was baked from
+ *                    (tables_io.h), so a table of another bake is refused
  *     KTXorientation "S=r,T=u"         (rows bottom-up, as GL uploads them)
  * The reader checks every header field, every size against the buffer length before any
  * allocation, the padding rules, the metadata and the checksum; messages name the file and
@@ -19,7 +21,7 @@
 #include "core/err.h"
 #include "tables/tables.h"
 
-#define KTX_SWELL_VERSION 1
+#define KTX_SWELL_VERSION 2
 #define KTX_MAX_DIM       8192
 #define KTX_MAX_LAYERS    1024
 /* GL enums the files use (GLES2 headers lack GL_HALF_FLOAT; its value is fixed by KTX). */

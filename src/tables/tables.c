@@ -2,6 +2,7 @@
 #include "tables/quantize.h"
 
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -182,4 +183,35 @@ float table_level_within_var(const struct swell_table *t, int l, int cm, int cs)
         acc += m2 - m * m > 0.0 ? m2 - m * m : 0.0;
     }
     return (float)(acc / (double)n);
+}
+
+static void layout_one(struct swell_table *t, const char *stem, int kind, int pattern, int size,
+                       int layers, int levels)
+{
+    memset(t, 0, sizeof *t);
+    if (pattern >= 0)
+        snprintf(t->name, sizeof t->name, "%s_p%d", stem, pattern);
+    else
+        snprintf(t->name, sizeof t->name, "%s", stem);
+    t->kind = kind;
+    t->pattern = pattern;
+    t->format = FORMAT_RGBA8;
+    t->width = t->height = size;
+    t->layers = layers;
+    t->levels = levels;
+}
+
+int tables_layout(const struct seastate *s, struct swell_table out[SWELL_MAX_TABLES])
+{
+    int n = 0, chain = 1;
+    while ((1 << (chain - 1)) < s->size_fs && chain < 31)
+        chain++;
+    for (int i = 0; i < s->patterns && i < SWELL_MAX_PATTERNS; i++) {
+        layout_one(&out[n++], "slope", TABLE_SLOPE, i, s->size_fs, s->frames, chain);
+        layout_one(&out[n++], "whitecap", TABLE_WHITECAP, i, s->size_fs, s->frames, chain);
+        layout_one(&out[n++], "disp", TABLE_DISP, i, s->size_geo, s->frames, 1);
+    }
+    layout_one(&out[n++], "fresnel", TABLE_FRESNEL, -1, TABLES_FRESNEL_SIZE, 1, 1);
+    layout_one(&out[n++], "fresnel_eff", TABLE_FRESNEL_EFF, -1, TABLES_FRESNEL_SIZE, 1, 1);
+    return n;
 }

@@ -19,6 +19,7 @@
 #include "core/seastate.h"
 
 #define SWELL_MAX_TABLES   32
+#define TABLES_FRESNEL_SIZE 64  /* side of both Fresnel tables (one layer, one level) */
 
 enum table_kind {
     TABLE_DISP = 0,      /* per pattern: (Dx, Dy, Dz, unused) choppy displacement, m. No mips */
@@ -50,6 +51,8 @@ struct swell_table {
     int layers;             /* array elements (frames); >= 1 */
     int levels;             /* mip levels; 1 = no mips; full chain = log2(max(w,h)) + 1 */
     float scale[4], bias[4];/* dequantisation, see above */
+    uint32_t set_id;        /* tables_set_id of the sea state baked with; set by a save, read
+                               from the file (tables_io.h), 0 for a set only in memory */
     uint8_t *data;          /* owned; table_bytes() bytes */
 };
 
@@ -105,6 +108,13 @@ int table_name_valid(const char *name);
 
 /* Allocate t->data for the geometry already set in t (zeroed). */
 int table_alloc(struct swell_table *t, struct swell_err *err);
+
+/* The tables a set baked from the resolved state s holds, in the bake's order: per pattern
+ * slope_pN and whitecap_pN (size_fs square, frames layers, full mip chain) and disp_pN
+ * (size_geo square, frames layers, one level), then fresnel and fresnel_eff. Fills name, kind,
+ * pattern, format (RGBA8), width, height, layers and levels of out[0..n) (no data) and returns
+ * n; the bake builds exactly these and a loaded manifest must list exactly these. */
+int tables_layout(const struct seastate *s, struct swell_table out[SWELL_MAX_TABLES]);
 
 /* Find a table by kind and pattern (-1 for global tables); NULL when absent. */
 const struct swell_table *tables_find(const struct swell_tables *s, int kind, int pattern);

@@ -12,6 +12,7 @@
 #include "tables/ktx.h"
 #include "core/kv.h"
 #include "core/preset.h"
+#include "tables/set_check.h"
 
 #define KTX_SUFFIX ".ktx"
 #define MANIFEST_BUF_BYTES (64u * 1024u)
@@ -92,7 +93,9 @@ static int manifest_write(const struct swell_tables *s, const struct tables_mani
         put(&t, "table.%d.file_bytes = %" PRIu64 "\n", i, e[i].file_bytes);
         put(&t, "table.%d.file_crc32 = %" PRIu32 "\n", i, e[i].file_crc32);
     }
-    if (t.overflow) {
+    if (!t.overflow)
+        t.len = manifest_reseal(t.buf, t.len, t.cap);
+    if (t.overflow || t.len == 0) {
         free(t.buf);
         return swell_fail(err, SWELL_E_ARG, "manifest text exceeds %u bytes",
                           MANIFEST_BUF_BYTES);
@@ -177,6 +180,8 @@ int manifest_read_memory(const void *buf, size_t len, const char *name_for_error
     if (rc)
         return rc;
     struct swell_tables *s = &out->set;
+    if ((rc = tables_check_seal(buf, len, &kv, err)))
+        goto done;
     if ((rc = preset_apply_kv(&kv, "state.", 1, &s->state, err)))
         goto done;
     if ((rc = kv_get_int(&kv, "set.patterns", 0, SWELL_MAX_PATTERNS, &s->patterns, err)) ||
@@ -220,7 +225,8 @@ int manifest_read_memory(const void *buf, size_t len, const char *name_for_error
                 goto done;
             }
     }
-    rc = kv_check_all_used(&kv, err);
+    if ((rc = kv_check_all_used(&kv, err)) == 0)
+        rc = tables_check_manifest(out, &kv, err);
 done:
     kv_destroy(&kv);
     if (rc)
@@ -232,9 +238,10 @@ done:
 
 /* Read dir/<name>.ktx, check it against its manifest entry and decode it into *tb (data
  * owned by *tb on success, nothing on failure). */
-static int check_table(const char *dir, const struct tables_manifest_entry *e,
+static int check_table(const char *dir, const struct tables_manifest *m, int i,
                        struct swell_table *tb, struct swell_err *err)
 {
+    const struct tables_manifest_entry *e = &m->entry[i];
     char file[48], path[4096];
     snprintf(file, sizeof file, "%s" KTX_SUFFIX, e->name);
     memset(tb, 0, sizeof *tb);
@@ -271,6 +278,19 @@ static int check_table(const char *dir, const struct tables_manifest_entry *e,
                         tb->width, tb->height, tb->layers, tb->levels, e->name,
                         table_kind_name(e->kind), e->pattern, table_format_name(e->format),
                         e->width, e->height, e->layers, e->levels);
+        free(tb->data);
+        memset(tb, 0, sizeof *tb);
+        goto done;
+    }
+    uint32_t id = tables_set_id(&m->set.state);
+    if (tb->set_id != id) {
+        rc = swell_fail(err, SWELL_E_FORMAT, "%s: baked from another sea state (swell.set 0x%08"
+                        PRIx32 ", the manifest's state is 0x%08" PRIx32 "): a table of another "
+                        "bake; re-bake the set", path, tb->set_id, id);
+    } else {
+        rc = tables_check_values(tb, path, err);
+    }
+    if (rc) {
         free(tb->data);
         memset(tb, 0, sizeof *tb);
     }
@@ -358,7 +378,7 @@ int tables_load_dir(const char *dir, struct swell_tables *out, struct swell_err 
         goto fail;
     *out = m->set;
     for (int i = 0; i < m->set.count; i++) {
-        rc = check_table(dir, &m->entry[i], &out->table[i], err);
+        rc = check_table(dir, m, i, &out->table[i], err);
         if (rc)
             goto fail;
     }
@@ -425,7 +445,7 @@ int tables_verify_dir(const char *dir, tables_verify_fn fn, void *user,
         struct swell_err e;
         swell_err_clear(&e);
         fill_entry(&v, &m->entry[i]);
-        v.status = check_table(dir, &m->entry[i], &tb, &e);
+        v.status = check_table(dir, m, i, &tb, &e);
         free(tb.data);
         if (v.status) {
             snprintf(v.msg, sizeof v.msg, "%s", e.msg);
@@ -491,13 +511,16 @@ int tables_save_dir(const struct swell_tables *t, const char *dir, struct swell_
     if ((rc = fs_join(path, sizeof path, dir, TABLES_MANIFEST_NAME, err)) ||
         (rc = fs_remove_durable(path, err)))
         goto done;
+    uint32_t id = tables_set_id(&t->state);
     for (int i = 0; i < t->count; i++) {
         const struct swell_table *tb = &t->table[i];
+        struct swell_table stamped = *tb;   /* shares the data; carries the set's id */
+        stamped.set_id = id;
         uint8_t *buf = NULL;
         size_t len = 0;
         char file[48];
         snprintf(file, sizeof file, "%s" KTX_SUFFIX, tb->name);
-        if ((rc = ktx_write_memory(tb, &buf, &len, err)))
+        if ((rc = ktx_write_memory(&stamped, &buf, &len, err)))
             goto done;
         snprintf(m->entry[i].name, sizeof m->entry[i].name, "%s", tb->name);
         m->entry[i].file_bytes = len;

@@ -1,7 +1,11 @@
 /* tables_io.h - a table set on disk: one KTX 1.1 file per table (src/tables/ktx.h) plus
  * "manifest.swell" (src/core/kv.h format, first line "swell-manifest 2") holding the resolved sea
  * state, every swell_tables field (floats %.9g, exact round trip) and, per table, its file,
- * kind, pattern, geometry, file size and crc32 of the whole file.
+ * kind, pattern, geometry, file size and crc32 of the whole file; its last line,
+ * "manifest.crc32 = N", is the crc32 of every line above it ("\r\n" read as "\n"). Each KTX
+ * file carries the set's id (tables_set_id: the crc32 of the state lines), so a table from
+ * another bake is refused even where a manifest was edited to list it. Every value is checked
+ * on load (src/tables/set_check.h), by the loader and `inspect` alike.
  *
  * Crash safety: a save removes the old manifest first, writes each KTX atomically, removes
  * stale tables and writes the manifest last, atomically. A killed save therefore leaves no
@@ -18,10 +22,12 @@
 
 #define TABLES_MANIFEST_NAME    "manifest.swell"
 #define TABLES_MANIFEST_MAGIC   "swell-manifest"
-#define TABLES_MANIFEST_VERSION 4   /* 2: Hu's Fresnel texture indexed by the view angle,
+#define TABLES_MANIFEST_VERSION 5   /* 2: Hu's Fresnel texture indexed by the view angle,
                                        * 3: by a radius denser towards grazing (fresnel.h),
                                        * 4: whitecap tables hold the foam memory of the
-                                       *    combined k (bake.c), not per-pattern foam */
+                                       *    combined k (bake.c), not per-pattern foam,
+                                       * 5: sealed (manifest.crc32), values checked
+                                       *    (set_check.h), tables carry swell.set */
 #define TABLES_MANIFEST_MAX_BYTES (1u << 20)
 
 struct tables_manifest_entry {
@@ -62,7 +68,8 @@ typedef void (*tables_verify_fn)(void *user, const struct tables_verify_entry *e
 int tables_verify_dir(const char *dir, tables_verify_fn fn, void *user,
                       struct tables_manifest *manifest_out, struct swell_err *err);
 
-/* Parse manifest text (fuzz target). name_for_errors labels messages. */
+/* Parse manifest text (fuzz target): the seal, then every value (set_check.h).
+ * name_for_errors labels messages. */
 int manifest_read_memory(const void *buf, size_t len, const char *name_for_errors,
                          struct tables_manifest *out, struct swell_err *err);
 

@@ -11,7 +11,10 @@
 #  4. an unwritable output (read-only tmpfs; a parent that is a regular file) and a full one
 #     (a tiny tmpfs): precise message, exit 1, no file the loader accepts, no temp file;
 #  5. a FIFO in place of a manifest, a table, a preset or a shader: refused at once with what
-#     it is (it had hung both programs forever, issue 17), nothing written.
+#     it is (it had hung both programs forever, issue 17), nothing written;
+#  6. the umask honoured;
+#  7. a manifest edited (the seal refuses it), or edited and resealed (its values are checked
+#     against physics, the state and each other), a table of another bake, extreme scale/bias.
 # Mounting needs root and CAP_SYS_ADMIN; where it is refused the mount cases say why and are
 # skipped, except under CI=true where that is a failure.
 set -u
@@ -171,6 +174,7 @@ reseal() {
     sed -i "s/^table\.$i\.file_crc32 = .*/table.$i.file_crc32 = $(crc_of "$2")/;
             s/^table\.$i\.file_bytes = .*/table.$i.file_bytes = $(wc -c < "$2" | tr -d ' ')/" \
         "$1/manifest.swell"
+    "$BUILD/tools/manifest-reseal" "$1/manifest.swell"
 }
 # refused DIR FILE WHAT: inspect and swell --tables both exit 1 naming FILE; no PNG written
 refused() {
@@ -406,6 +410,42 @@ for m in 027 002; do
     check "bake under umask $m: manifest $got, tables $modes(want $want)" \
         sh -c "[ '$got' = '$want' ] && [ '$modes' = '$want ' ]"
 done
+
+# ---- 7. a table set that cannot lie: the manifest's seal and its values (issue 17) ---------------
+# edit DIR SED: change the manifest as a person or another program would
+edited() { rm -rf "$1"; cp -r "$T/good" "$1"; sed -i "$2" "$1/manifest.swell"; }
+edited "$T/seal" 's/^set.frames = .*/set.frames = 0/'
+refused "$T/seal" "manifest.crc32" "an edited manifest (set.frames = 0), unsealed: the seal"
+edited "$T/seal_gone" '/^manifest.crc32 = /d'
+refused "$T/seal_gone" "manifest.crc32" "a manifest without its seal line"
+# resealed: the values themselves are checked (set.frames = 0 had crashed swell with SIGFPE;
+# a patch size of 0, -300, 1e-30 or 3e38 m drew garbage and exited 0)
+for e in "set.frames = 0" "state.frames = 0" "pattern.0.size_m = 0" "pattern.0.size_m = -300" \
+         "pattern.0.size_m = 1e-30" "pattern.0.size_m = 3e38" "pattern.0.k_max = 1e5" \
+         "pattern.0.lambda = 1.5" "pattern.0.period_s = 1.7" "pattern.0.var_h = -1" \
+         "pattern.0.mss_x = 50" "pattern.1.size_m = 10" "set.mss_unresolved_x = 50" \
+         "set.hs_m = 30" "set.whitecap_fraction_model = 2" "set.foam_recovery_per_s = 0" \
+         "set.whitecap_epsilon = 1e30" "table.0.layers = 2" \
+         "table.0.levels = 1" "table.2.width = 16"; do
+    key=${e%% =*}
+    edited "$T/values" "s/^$key = .*/$e/"
+    "$BUILD/tools/manifest-reseal" "$T/values/manifest.swell"
+    refused "$T/values" "$key" "a resealed manifest with $e"
+done
+# a table of another bake (another wind), listed with its own size and crc32 and resealed: the
+# file's swell.set names the sea state it was baked from
+"$B" --size 16 --size-geo 8 --frames 4 --patterns 1 --wind 12 --out "$T/other" --quiet ||
+    bad "a second small bake"
+rm -rf "$T/mixed"; cp -r "$T/good" "$T/mixed"; cp "$T/other/slope_p0.ktx" "$T/mixed/"
+reseal "$T/mixed" "$T/mixed/slope_p0.ktx"
+refused "$T/mixed" "another sea state" "a table of another bake, resealed into the manifest"
+# extreme but finite dequantisation in a KTX (the image crc32 does not cover the metadata)
+rm -rf "$T/scale"; cp -r "$T/good" "$T/scale"
+# the first scale becomes 3e+0...030, as long as the number it replaces (the file keeps its size)
+perl -pi -e 's/(swell\.scale\x00)([^ ]{5,})/$1 . "3e+" . ("0" x (length($2) - 5)) . "30"/e' \
+    "$T/scale/disp_p0.ktx"
+reseal "$T/scale" "$T/scale/disp_p0.ktx"
+refused "$T/scale" "physical range" "a displacement table scaled by 3e30, resealed"
 
 echo "$checks checks, $fails failed"
 [ $fails -eq 0 ]

@@ -293,7 +293,7 @@ static void test_metadata(void **st)
         int code;
         const char *field;
     } vals[] = {
-        { "swell.version", '2', SWELL_E_VERSION, "swell.version" },
+        { "swell.version", '3', SWELL_E_VERSION, "swell.version" },
         { "swell.version", 'x', SWELL_E_FORMAT, "swell.version" },
         { "swell.kind", 'x', SWELL_E_FORMAT, "swell.kind" },
         { "swell.pattern", '7', SWELL_E_FORMAT, "swell.pattern" },

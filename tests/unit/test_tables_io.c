@@ -8,12 +8,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
 #include <ftw.h>
 #include <unistd.h>
 
 #include <cmocka.h>
 
 #include "core/fsutil.h"
+#include "tables/set_check.h"
 #include "tables/tables_io.h"
 
 static char scratch[1024];
@@ -24,59 +26,51 @@ static uint32_t lcg(uint32_t *s)
     return *s >> 8;
 }
 
-static void add_table(struct swell_tables *s, const char *name, int kind, int pattern,
-                      int format, int w, int layers, int levels)
-{
-    struct swell_table *t = &s->table[s->count++];
-    snprintf(t->name, sizeof t->name, "%s", name);
-    t->kind = kind;
-    t->pattern = pattern;
-    t->format = format;
-    t->width = w;
-    t->height = w;
-    t->layers = layers;
-    t->levels = levels;
-    for (int c = 0; c < 4; c++) {
-        t->scale[c] = 1.0f / (float)(3 + c + s->count);
-        t->bias[c] = -0.1f * (float)(c + 1);
-    }
-    assert_int_equal(table_alloc(t, NULL), 0);
-    uint32_t seed = (uint32_t)s->count * 977u;
-    for (size_t i = 0; i < table_bytes(t); i++)
-        t->data[i] = (uint8_t)lcg(&seed);
-}
-
+/* A set shaped as a bake of its state would be (tables_layout) with values that pass
+ * set_check.h, random texels and distinct scale and bias per table. */
 static void make_set(struct swell_tables *s)
 {
     memset(s, 0, sizeof *s);
     s->state = (struct seastate){
         .wind_speed_mps = 13.7f, .wind_dir_deg = -33.3f, .fetch_km = 123.456f,
         .depth_m = 17.25f, .spectrum = SPECTRUM_TMA, .spread = 7.1f, .seed = 4000000000u,
-        .patterns = 2, .loop_period_s = 19.9f, .frames = 3, .size_fs = 16, .size_geo = 8,
+        .patterns = 2, .loop_period_s = 19.9f, .frames = 4, .size_fs = 16, .size_geo = 8,
         .choppiness = 1.3f, .whitecap_model = WHITECAP_WU88, .foam_half_life_s = 2.2f,
-        .budget_bytes = 123456789012ull,
+        .budget_bytes = 123456789ull,
     };
     s->patterns = 2;
-    s->frames = 3;
+    s->frames = 4;
     s->loop_period_s = 19.9f;
-    for (int i = 0; i < SWELL_MAX_PATTERNS; i++) {
+    double var_h = 0.0;
+    for (int i = 0; i < s->patterns; i++) {
         s->pattern[i] = (struct swell_pattern_info){
-            .size_m = 100.0f / (float)(i + 3), .k_min = 0.01f * (float)i, .k_max = 7.0f / 3.0f,
-            .lambda = 0.9f, .period_s = 16.0f / (float)(i + 1), .var_h = 1e-5f * (float)(i + 1), .mss_x = 0.011f, .mss_y = 0.007f,
+            .size_m = 100.0f / (float)(i + 3), .k_min = 0.01f * (float)i,
+            .k_max = 0.5f * (float)(i + 1), .lambda = 1.3f,
+            .period_s = 19.9f / (float)(i + 1), .var_h = 1e-5f * (float)(i + 1),
+            .mss_x = 0.011f, .mss_y = 0.007f,
         };
+        var_h += s->pattern[i].var_h;
     }
     s->mss_unresolved_x = 1.0f / 300.0f;
     s->mss_unresolved_y = 2.0f / 700.0f;
-    s->hs_m = 2.345678f;
+    s->hs_m = (float)(4.0 * sqrt(var_h));
     s->foam_recovery_per_s = 0.0123456789f;
     s->whitecap_breaking_fraction = 0.00234f;
     s->whitecap_fraction_model = 0.0123f;
     s->whitecap_fraction_measured = 0.0119f;
     s->whitecap_epsilon = 0.3333333f;
-    add_table(s, "disp_p0", TABLE_DISP, 0, FORMAT_RGBA16F, 8, 3, 1);
-    add_table(s, "slope_p0", TABLE_SLOPE, 0, FORMAT_RGBA8, 16, 3, 5);
-    add_table(s, "slope_p1", TABLE_SLOPE, 1, FORMAT_RGBA8, 16, 3, 5);
-    add_table(s, "fresnel", TABLE_FRESNEL, -1, FORMAT_RGBA8, 8, 1, 1);
+    s->count = tables_layout(&s->state, s->table);
+    for (int n = 0; n < s->count; n++) {
+        struct swell_table *t = &s->table[n];
+        for (int c = 0; c < 4; c++) {
+            t->scale[c] = 1.0f / (float)(4 + c + n);
+            t->bias[c] = 0.01f * (float)(c + 1);
+        }
+        assert_int_equal(table_alloc(t, NULL), 0);
+        uint32_t seed = (uint32_t)(n + 1) * 977u;
+        for (size_t i = 0; i < table_bytes(t); i++)
+            t->data[i] = (uint8_t)lcg(&seed);
+    }
 }
 
 static void path_in(char *buf, const char *dir, const char *file)
@@ -193,7 +187,7 @@ static void test_roundtrip(void **st)
     }
     uint8_t *m = NULL;
     slurp("rt", "manifest.swell", &m);
-    assert_memory_equal(m, "swell-manifest 4\n", 17);
+    assert_memory_equal(m, "swell-manifest 5\n", 17);
     free(m);
     tables_destroy(&a);
     tables_destroy(&b);
@@ -340,7 +334,7 @@ static void test_verify(void **st)
     dir_path(d, "verify");
     struct seen s = { 0 };
     assert_int_equal(tables_verify_dir(d, on_entry, &s, NULL, &e), 0);
-    assert_int_equal(s.n, 4);
+    assert_int_equal(s.n, 8);
     assert_int_equal(s.bad, 0);
     uint8_t *buf = NULL;
     size_t len = slurp("verify", "fresnel.ktx", &buf);
@@ -349,7 +343,7 @@ static void test_verify(void **st)
     free(buf);
     memset(&s, 0, sizeof s);
     assert_int_equal(tables_verify_dir(d, on_entry, &s, NULL, &e), SWELL_E_CHECKSUM);
-    assert_int_equal(s.n, 4);
+    assert_int_equal(s.n, 8);
     assert_int_equal(s.bad, 1);
     assert_string_equal(s.bad_file, "fresnel.ktx");
     assert_non_null(strstr(e.msg, "fresnel.ktx"));
@@ -370,8 +364,21 @@ static void expect_manifest_fail(const char *text, size_t len, int code, const c
     free(m);
 }
 
+/* As expect_manifest_fail, after sealing text again (set_check.h manifest_reseal): what an
+ * edit by another program looks like, to reach the checks behind the seal. */
+static void expect_resealed_fail(const char *text, size_t len, int code, const char *what)
+{
+    char *c = malloc(len + 64);
+    memcpy(c, text, len);
+    size_t n = manifest_reseal(c, len, len + 64);
+    assert_true(n > 0);
+    expect_manifest_fail(c, n, code, what);
+    free(c);
+}
+
 /* Every line removed, every value damaged, the magic and version changed, truncations,
- * duplicates and unknown keys: each refused with the manifest's name (and the key). */
+ * duplicates and unknown keys: each refused with the manifest's name (and the key); every
+ * edit left unsealed refused by the seal. */
 static void test_manifest_corruption(void **st)
 {
     (void)st;
@@ -385,7 +392,7 @@ static void test_manifest_corruption(void **st)
     struct tables_manifest *m = malloc(sizeof *m);
     struct swell_err e;
     assert_int_equal(manifest_read_memory(text, len, MNAME, m, &e), 0);
-    assert_int_equal(m->set.count, 4);
+    assert_int_equal(m->set.count, 8);
     free(m);
     char *c = malloc(len + 64);
     int lines = 0;
@@ -397,13 +404,24 @@ static void test_manifest_corruption(void **st)
         lines++;
         if (text[i] == '#')
             continue;
+        if (end == len) {   /* the seal: dropped, damaged, wrong */
+            assert_memory_equal(text + i, "manifest.crc32 = ", 17);
+            expect_manifest_fail(text, i, SWELL_E_FORMAT, "last line is not 'manifest.crc32");
+            memcpy(c, text, len);
+            c[i + 17] = '?';
+            expect_manifest_fail(c, len, SWELL_E_FORMAT, "manifest.crc32");
+            c[i + 17] = text[i + 17] == '1' ? '2' : '1';
+            expect_manifest_fail(c, len, SWELL_E_CHECKSUM, "edited or is damaged");
+            continue;
+        }
         /* drop the line */
         memcpy(c, text, i);
         memcpy(c + i, text + end, len - end);
-        expect_manifest_fail(c, len - (end - i), SWELL_E_FORMAT,
+        expect_resealed_fail(c, len - (end - i), SWELL_E_FORMAT,
                              lines == 1 ? "swell-manifest" : "missing key");
         if (lines == 1)
             continue;
+        expect_manifest_fail(c, len - (end - i), SWELL_E_CHECKSUM, "manifest.crc32");
         /* damage the value: "= x..." */
         memcpy(c, text, len);
         const char *eq = memchr(text + i, '=', end - i);
@@ -411,11 +429,12 @@ static void test_manifest_corruption(void **st)
         c[eq - text + 2] = '?';
         char key[96];
         snprintf(key, sizeof key, "%.*s", (int)(eq - text - 1 - (long)i), text + i);
-        expect_manifest_fail(c, len, SWELL_E_FORMAT, key);
+        expect_resealed_fail(c, len, SWELL_E_FORMAT, key);
+        expect_manifest_fail(c, len, SWELL_E_CHECKSUM, "manifest.crc32");
         /* the line twice */
         memcpy(c, text, end);
         memcpy(c + end, text + i, len - i);
-        expect_manifest_fail(c, len + (end - i), SWELL_E_FORMAT, "duplicate key");
+        expect_resealed_fail(c, len + (end - i), SWELL_E_FORMAT, "duplicate key");
     }
     assert_true(lines > 60);
     memcpy(c, text, len);
@@ -428,9 +447,14 @@ static void test_manifest_corruption(void **st)
     expect_manifest_fail(c, len, SWELL_E_FORMAT, "swell-manifest");
     memcpy(c, text, len);
     memcpy(c + len, "bogus.key = 1\n", 14);
-    expect_manifest_fail(c, len + 14, SWELL_E_FORMAT, "unknown key 'bogus.key'");
-    memcpy(c + len, "set.count 4\n", 12);
-    expect_manifest_fail(c, len + 12, SWELL_E_FORMAT, "expected '='");
+    expect_manifest_fail(c, len + 14, SWELL_E_FORMAT, "last line is not 'manifest.crc32");
+    const char *seal = strstr(text, "\nmanifest.crc32 = ");
+    assert_non_null(seal);
+    size_t body = (size_t)(seal - text) + 1;   /* the lines above the seal */
+    memcpy(c + body, "bogus.key = 1\n", 14);
+    expect_resealed_fail(c, body + 14, SWELL_E_FORMAT, "unknown key 'bogus.key'");
+    memcpy(c + body, "set.count 4\n", 12);
+    expect_resealed_fail(c, body + 12, SWELL_E_FORMAT, "expected '='");
     /* Truncations: only whole lines can succeed, and only the whole file has every key. */
     for (size_t n = 0; n < len - 1; n++) {
         struct tables_manifest *t = malloc(sizeof *t);
