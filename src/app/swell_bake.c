@@ -82,6 +82,49 @@ static int report_dir_missing(const char *path)
     return 0;
 }
 
+/* path made absolute through its folder (which must exist): "/abs/dir/name"; 0 on failure. */
+static int absolute(const char *path, char *out, size_t cap)
+{
+    char dir[4096], real[4096];
+    const char *slash = strrchr(path, '/');
+    size_t n = !slash ? 0 : slash == path ? 1 : (size_t)(slash - path);
+    if (n >= sizeof dir)
+        return 0;
+    memcpy(dir, slash ? path : ".", slash ? n : 1);
+    dir[slash ? n : 1] = '\0';
+    if (!realpath(dir, real))
+        return 0;
+    int w = snprintf(out, cap, "%s/%s", strcmp(real, "/") ? real : "", slash ? slash + 1 : path);
+    return w > 0 && (size_t)w < cap;
+}
+
+/* 1 (with a message) when the report would land in the set's folder, replace it, or land in
+ * the folder the set is written in before it is swapped in (tables/set_dir.h): the set
+ * replaces its whole folder, so a report there would be lost or block the next bake. */
+static int report_collides(const char *report, const char *out)
+{
+    char r[8192], d[8192], real[4096];
+    size_t n = strlen(out);
+    while (n > 1 && out[n - 1] == '/')
+        n--;
+    char o[4096];
+    snprintf(o, sizeof o, "%.*s", (int)n, out);
+    if (!absolute(report, r, sizeof r))
+        return 0;   /* its folder is checked to exist; nothing to compare then */
+    if (realpath(o, real))
+        snprintf(d, sizeof d, "%s", real);
+    else if (!absolute(o, d, sizeof d))
+        return 0;   /* out's folder does not exist yet: the report's (which does) is not in it */
+    size_t dn = strlen(d);
+    if (strcmp(r, d) == 0 || (strncmp(r, d, dn) == 0 && (r[dn] == '/' ||
+                                                         strncmp(r + dn, ".tmp.", 5) == 0))) {
+        fprintf(stderr, "swell-bake: --report '%s' is inside or is the table folder '%s'; a "
+                "bake replaces that whole folder: write the report elsewhere\n", report, out);
+        return 1;
+    }
+    return 0;
+}
+
 static int parse_args(int argc, char **argv, struct options *o)
 {
     static const char *const flags[] = { "--quiet", NULL };
@@ -111,7 +154,7 @@ static int parse_args(int argc, char **argv, struct options *o)
         fprintf(stderr, "swell-bake: --out DIR is required (see --help)\n");
         return 2;
     }
-    if (o->report && report_dir_missing(o->report))
+    if (o->report && (report_dir_missing(o->report) || report_collides(o->report, o->out_dir)))
         return 2;
     return 0;
 }

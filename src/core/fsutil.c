@@ -68,7 +68,7 @@ static void dir_of(const char *path, char *buf, size_t cap)
     buf[n] = '\0';
 }
 
-static int fsync_dir(const char *path, struct swell_err *err)
+int fs_sync_parent(const char *path, struct swell_err *err)
 {
     char dir[PATH_MAX];
     dir_of(path, dir, sizeof dir);
@@ -87,7 +87,7 @@ static int fsync_dir(const char *path, struct swell_err *err)
 
 /* The process's umask without changing it (umask(2) can only set it): /proc's Umask line,
  * else the umask(2) round trip (not thread-safe, the kernel has said it since 4.7). */
-static mode_t process_umask(void)
+mode_t fs_umask(void)
 {
     FILE *f = fopen("/proc/self/status", "re");
     char line[256];
@@ -130,7 +130,7 @@ int fs_write_atomic(const char *path, const void *data, size_t len, struct swell
         left -= (size_t)w;
     }
     /* mkstemp makes 0600 files; a file written here gets what open(0666) would: the umask's */
-    if (fchmod(fd, 0666 & ~process_umask()) != 0) {
+    if (fchmod(fd, 0666 & ~fs_umask()) != 0) {
         rc = swell_fail(err, SWELL_E_IO, "cannot chmod '%s': %s", tmp, strerror(errno));
         goto fail;
     }
@@ -149,7 +149,7 @@ int fs_write_atomic(const char *path, const void *data, size_t len, struct swell
                         strerror(errno));
         goto fail;
     }
-    return fsync_dir(path, err);
+    return fs_sync_parent(path, err);
 fail:
     if (fd >= 0)
         close(fd);
@@ -164,7 +164,7 @@ int fs_remove_durable(const char *path, struct swell_err *err)
             return 0;
         return swell_fail(err, SWELL_E_IO, "cannot remove '%s': %s", path, strerror(errno));
     }
-    return fsync_dir(path, err);
+    return fs_sync_parent(path, err);
 }
 
 int fs_read_file(const char *path, size_t max_bytes, uint8_t **out, size_t *out_len,

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/types.h>
 #include "core/err.h"
 
 /* Suffix marker of the temporary files fs_write_atomic creates ("<path>.tmp.XXXXXX"). A reader
@@ -22,6 +23,11 @@ int fs_write_atomic(const char *path, const void *data, size_t len, struct swell
 
 /* Remove `path` (missing is fine) and fsync its directory so the removal is durable. */
 int fs_remove_durable(const char *path, struct swell_err *err);
+/* fsync the directory holding path ("." when none), so a rename or unlink in it is durable;
+ * a file system that cannot sync a directory (EINVAL) is not an error. */
+int fs_sync_parent(const char *path, struct swell_err *err);
+/* The process's umask, read without changing it. */
+mode_t fs_umask(void);
 
 /* Read the whole regular file into a malloc'd buffer with one extra NUL byte after the data
  * (so text can be scanned safely). Files larger than max_bytes are refused before reading. */

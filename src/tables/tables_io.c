@@ -13,6 +13,7 @@
 #include "core/kv.h"
 #include "core/preset.h"
 #include "tables/set_check.h"
+#include "tables/set_dir.h"
 
 #define KTX_SUFFIX ".ktx"
 #define MANIFEST_BUF_BYTES (64u * 1024u)
@@ -471,19 +472,6 @@ done:
 
 /* ---- save ----------------------------------------------------------------------------- */
 
-struct stale_ctx {
-    const char *dir;
-    struct swell_err *err;
-};
-
-static int remove_stale(void *user, const char *file)
-{
-    struct stale_ctx *c = user;
-    char path[4096];
-    int rc = fs_join(path, sizeof path, c->dir, file, c->err);
-    return rc ? rc : fs_remove_durable(path, c->err);
-}
-
 int tables_save_dir(const struct swell_tables *t, const char *dir, struct swell_err *err)
 {
     if (t->count < 0 || t->count > SWELL_MAX_TABLES)
@@ -498,19 +486,17 @@ int tables_save_dir(const struct swell_tables *t, const char *dir, struct swell_
                 return swell_fail(err, SWELL_E_ARG, "tables %d and %d are both named '%s'",
                                   j, i, t->table[i].name);
     }
-    int rc = fs_mkdir_p(dir, err);
-    if (rc)
-        return rc;
     struct tables_manifest *m = calloc(1, sizeof *m);
-    char *text = NULL;
     if (!m)
         return swell_fail(err, SWELL_E_NOMEM, "cannot allocate the manifest");
+    struct set_dir pub;
+    int rc = set_dir_begin(&pub, dir, err);   /* dir may be replaced; a folder beside it */
+    if (rc) {
+        free(m);
+        return rc;
+    }
+    char *text = NULL;
     char path[4096];
-    /* The old manifest goes first: from here until the new one lands the directory is
-     * visibly incomplete instead of silently mixing two bakes. */
-    if ((rc = fs_join(path, sizeof path, dir, TABLES_MANIFEST_NAME, err)) ||
-        (rc = fs_remove_durable(path, err)))
-        goto done;
     uint32_t id = tables_set_id(&t->state);
     for (int i = 0; i < t->count; i++) {
         const struct swell_table *tb = &t->table[i];
@@ -525,23 +511,22 @@ int tables_save_dir(const struct swell_tables *t, const char *dir, struct swell_
         snprintf(m->entry[i].name, sizeof m->entry[i].name, "%s", tb->name);
         m->entry[i].file_bytes = len;
         m->entry[i].file_crc32 = fs_crc32(buf, len);
-        rc = fs_join(path, sizeof path, dir, file, err);
+        rc = fs_join(path, sizeof path, pub.tmp, file, err);
         if (rc == 0)
             rc = fs_write_atomic(path, buf, len, err);
         free(buf);
         if (rc)
             goto done;
     }
-    m->set = *t;
-    struct stale_ctx c = { dir, err };
-    if ((rc = for_unlisted(dir, m, remove_stale, &c, err)))
-        goto done;
     size_t len = 0;
     if ((rc = manifest_write(t, m->entry, &text, &len, err)) ||
-        (rc = fs_join(path, sizeof path, dir, TABLES_MANIFEST_NAME, err)))
+        (rc = fs_join(path, sizeof path, pub.tmp, TABLES_MANIFEST_NAME, err)) ||
+        (rc = fs_write_atomic(path, text, len, err)))
         goto done;
-    rc = fs_write_atomic(path, text, len, err);
+    rc = set_dir_commit(&pub, err);   /* swaps the whole set in at once */
 done:
+    if (rc)
+        set_dir_abort(&pub);
     free(text);
     free(m);
     return rc;

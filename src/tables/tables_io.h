@@ -7,10 +7,10 @@
  * another bake is refused even where a manifest was edited to list it. Every value is checked
  * on load (src/tables/set_check.h), by the loader and `inspect` alike.
  *
- * Crash safety: a save removes the old manifest first, writes each KTX atomically, removes
- * stale tables and writes the manifest last, atomically. A killed save therefore leaves no
- * manifest (load refuses the directory) or a complete one; never a manifest pointing at
- * missing or partial files. Leftover temporary files ("*.tmp.*") are never read.
+ * Crash safety and ownership: a save writes the whole set into a new folder beside dir and
+ * swaps it in at once (src/tables/set_dir.h), replacing dir only when it holds nothing but a
+ * table set; a killed save leaves dir as it was. Leftover temporary files ("*.tmp.*") are
+ * never read.
  */
 #ifndef SWELL_TABLES_IO_H
 #define SWELL_TABLES_IO_H

@@ -14,7 +14,9 @@
 #     it is (it had hung both programs forever, issue 17), nothing written;
 #  6. the umask honoured;
 #  7. a manifest edited (the seal refuses it), or edited and resealed (its values are checked
-#     against physics, the state and each other), a table of another bake, extreme scale/bias.
+#     against physics, the state and each other), a table of another bake, extreme scale/bias;
+#  8. a bake owns only what it writes: a folder with other files refused untouched, two bakes
+#     at once leave one whole set, --report inside the set's folder refused.
 # Mounting needs root and CAP_SYS_ADMIN; where it is refused the mount cases say why and are
 # skipped, except under CI=true where that is a failure.
 set -u
@@ -283,6 +285,8 @@ while [ $i -lt $KILL_RUNS ]; do
         else
             bad "kill after ${delay} ms (bake exit $rc): inspect accepted a set that is neither the reference nor the older set"
         fi
+    elif [ $irc -eq 1 ] && [ $((i % 2)) -eq 1 ]; then
+        bad "kill after ${delay} ms over an older set: it is no longer loadable (the new set must be swapped in whole): $(printf '%s' "$out" | tail -n 1 | cut -c 1-150)"
     elif [ $irc -eq 1 ]; then
         refused_n=$((refused_n + 1))
         ok "kill after ${delay} ms (bake exit $rc): refused: $(printf '%s' "$out" | tail -n 1 | cut -c 1-150)"
@@ -299,8 +303,13 @@ echo "section took $(($(date +%s) - t_section)) s"; t_section=$(date +%s)
 
 SMALL="--size 16 --size-geo 8 --frames 4 --patterns 1 --quiet"
 # nothing_loadable DIR: no manifest, no set inspect accepts, no temp file
+# (the set is written in a folder beside, "<dir>.tmp.*": none may be left there either)
 nothing_loadable() {
-    ! [ -e "$1/manifest.swell" ] && ! "$B" inspect "$1" >/dev/null 2>&1 && no_temp_files "$1"
+    ! [ -e "$1/manifest.swell" ] && ! "$B" inspect "$1" >/dev/null 2>&1 && no_temp_files "$1" &&
+        no_temp_files "$(dirname "$1")"
+}
+old_set_intact() {
+    "$B" inspect "$1" >/dev/null 2>&1 && no_temp_files "$1" && no_temp_files "$(dirname "$1")"
 }
 # runtime_error NAME PATTERN COMMAND...: exit 1 and a message matching PATTERN
 runtime_error() {
@@ -351,14 +360,15 @@ else
         "$B" --size 64 --size-geo 32 --frames 8 --patterns 2 --quiet --out "$T/full/tables"
     check "  ... nothing loadable, no temp file" nothing_loadable "$T/full/tables"
     rm -rf "$T/full/tables"
-    # over an older complete set that fits: the failed bake must not leave the old manifest
-    # pointing at a mix of old and new files
+    # over an older complete set that fits: the failed bake leaves the older set as it was (the
+    # new one is written beside and swapped in only when whole)
     # shellcheck disable=SC2086
     "$B" $SMALL --out "$T/full/tables" || bad "small bake into the 64 KiB tmpfs"
     "$B" inspect "$T/full/tables" >/dev/null 2>&1 || bad "the small set in the tmpfs is sound"
     runtime_error "re-bake a bigger set over it" "No space left on device" \
         "$B" --size 32 --size-geo 16 --frames 8 --patterns 2 --quiet --out "$T/full/tables"
-    check "  ... nothing loadable, no temp file" nothing_loadable "$T/full/tables"
+    check "  ... the older set intact and sound, no temp file or folder" old_set_intact \
+        "$T/full/tables"
     rm -rf "$T/full/tables"
     dd if=/dev/zero of="$T/full/filler" bs=4096 2>/dev/null
     runtime_error "swell PNG into a full file system" "No space left on device" \
@@ -446,6 +456,50 @@ perl -pi -e 's/(swell\.scale\x00)([^ ]{5,})/$1 . "3e+" . ("0" x (length($2) - 5)
     "$T/scale/disp_p0.ktx"
 reseal "$T/scale" "$T/scale/disp_p0.ktx"
 refused "$T/scale" "physical range" "a displacement table scaled by 3e30, resealed"
+
+# ---- 8. a bake owns only what it writes (issue 17 item 3) ----------------------------------------
+# a folder holding anything but a table set is refused before anything is written
+for f in notes.txt user.ktx slope_p9.ktx; do
+    rm -rf "$T/own"; cp -r "$T/good" "$T/own"; echo mine > "$T/own/$f"
+    # shellcheck disable=SC2086
+    out=$("$B" $SMALL --wind 12 --out "$T/own" 2>&1); rc=$?
+    check "bake into a set's folder holding $f: exit 1 naming it ($out)" \
+        sh -c "[ $rc -eq 1 ] && printf '%s' '$out' | grep -q '$f'"
+    check "  ... $f untouched, the set as it was" sh -c "[ \"\$(cat '$T/own/$f')\" = mine ] &&
+        cmp -s '$T/good/manifest.swell' '$T/own/manifest.swell' && ! ls -a '$T' | grep -q 'own\\.tmp\\.'"
+done
+rm -rf "$T/own"; mkdir -p "$T/own"; ln -s /etc/hostname "$T/own/fresnel.ktx"
+# shellcheck disable=SC2086
+out=$("$B" $SMALL --out "$T/own" 2>&1); rc=$?
+check "bake into a folder holding a symlink named as a table: exit 1 ($out)" \
+    sh -c "[ $rc -eq 1 ] && [ -L '$T/own/fresnel.ktx' ]"
+# two bakes into one folder at once, 8 times: both finish, the folder holds one of the two sets
+# whole (had been unloadable in 4 of 30 close starts)
+# shellcheck disable=SC2086
+"$B" $SMALL --wind 12 --out "$T/ref12" || bad "reference bake, wind 12"
+race_bad=0
+for i in 1 2 3 4 5 6 7 8; do
+    rm -rf "$T/race"
+    # shellcheck disable=SC2086
+    "$B" $SMALL --out "$T/race" & p1=$!
+    # shellcheck disable=SC2086
+    "$B" $SMALL --wind 12 --out "$T/race" & p2=$!
+    wait $p1; r1=$?; wait $p2; r2=$?
+    if [ $r1 -ne 0 ] || [ $r2 -ne 0 ] || ! "$B" inspect "$T/race" >/dev/null 2>&1 ||
+       ! { same_set "$T/good" "$T/race" || same_set "$T/ref12" "$T/race"; }; then
+        race_bad=$((race_bad + 1))
+    fi
+done
+check "two bakes into one folder at once, 8 times: both exit 0, one whole set ($race_bad bad)" \
+    [ $race_bad -eq 0 ]
+check "  ... no temporary folder left beside it" sh -c "! ls -a '$T' | grep -q 'race\\.tmp\\.'"
+# --report where the set goes: refused before the bake (it would be lost with the old folder)
+for r in "$T/good/r.json" "$T/good" "$T/good/"; do
+    # shellcheck disable=SC2086
+    out=$("$B" $SMALL --out "$T/good" --report "$r" 2>&1); rc=$?
+    check "--report $r with --out $T/good: exit 2 ($out)" \
+        sh -c "[ $rc -eq 2 ] && ! [ -e '$T/good/r.json' ] && [ -d '$T/good' ]"
+done
 
 echo "$checks checks, $fails failed"
 [ $fails -eq 0 ]

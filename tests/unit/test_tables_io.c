@@ -11,6 +11,8 @@
 #include <math.h>
 #include <ftw.h>
 #include <unistd.h>
+#include <sys/stat.h>
+#include <limits.h>
 
 #include <cmocka.h>
 
@@ -266,14 +268,72 @@ static void test_missing_swapped_modified_unlisted(void **st)
     free(buf);
 
     save(&a, "unlisted");
-    spit("unlisted", "stale_p3.ktx", "junk", 4);
-    expect_load_fail("unlisted", SWELL_E_FORMAT, "stale_p3.ktx");
-    /* saving again cleans the stale table away */
+    spit("unlisted", "slope_p3.ktx", "junk", 4);
+    expect_load_fail("unlisted", SWELL_E_FORMAT, "slope_p3.ktx");
+    /* saving again replaces the whole folder: the stale table is gone */
     save(&a, "unlisted");
-    path_in(p, "unlisted", "stale_p3.ktx");
+    path_in(p, "unlisted", "slope_p3.ktx");
     assert_int_not_equal(access(p, F_OK), 0);
 
     expect_load_fail("no_such_dir", SWELL_E_IO, "manifest");
+    tables_destroy(&a);
+}
+
+/* A save owns only what it writes (set_dir.h): a folder holding anything but a table set is
+ * refused untouched; a symlink to a set's folder stays a symlink; folders left by killed saves
+ * are cleaned; the new set arrives whole. */
+static void test_ownership(void **st)
+{
+    (void)st;
+    struct swell_tables a, b;
+    struct swell_err e;
+    char d[4096], p[4096], q[4096];
+    make_set(&a);
+    const char *intruders[] = { "notes.ktx", "readme.txt", "stale_p3.ktx" };
+    for (int i = 0; i < 3; i++) {
+        save(&a, "own");
+        spit("own", intruders[i], "mine", 4);
+        dir_path(d, "own");
+        swell_err_clear(&e);
+        assert_int_equal(tables_save_dir(&a, d, &e), SWELL_E_ARG);
+        assert_non_null(strstr(e.msg, intruders[i]));
+        path_in(p, "own", intruders[i]);
+        assert_int_equal(access(p, F_OK), 0);   /* untouched */
+        assert_int_equal(unlink(p), 0);
+        assert_int_equal(tables_load_dir(d, &b, &e), 0);   /* and the set still whole */
+        tables_destroy(&b);
+    }
+    /* a folder or a symlink inside is not ours either */
+    path_in(p, "own", "sub");
+    assert_int_equal(mkdir(p, 0755), 0);
+    assert_int_equal(tables_save_dir(&a, d, &e), SWELL_E_ARG);
+    assert_int_equal(rmdir(p), 0);
+    path_in(p, "own", "fresnel_link.ktx");
+    assert_int_equal(symlink("/etc/hostname", p), 0);
+    assert_int_equal(tables_save_dir(&a, d, &e), SWELL_E_ARG);
+    assert_int_equal(unlink(p), 0);
+    /* through a symlink: the folder it points to is replaced, the link kept */
+    dir_path(q, "own_link");
+    char abs[PATH_MAX];
+    assert_non_null(realpath(d, abs));
+    assert_int_equal(symlink(abs, q), 0);
+    assert_true(snprintf(p, sizeof p, "%s/", q) < (int)sizeof p);   /* a trailing '/' names the same folder */
+    if (tables_save_dir(&a, p, &e) != 0)
+        fail_msg("save through a symlink: %s", e.msg);
+    struct stat sb;
+    assert_int_equal(lstat(q, &sb), 0);
+    assert_true(S_ISLNK(sb.st_mode));
+    assert_int_equal(tables_load_dir(q, &b, &e), 0);
+    tables_destroy(&b);
+    /* a folder a killed save left beside (no process holds it) goes with the next save */
+    assert_true(snprintf(p, sizeof p, "%s.tmp.AbCdEf", d) < (int)sizeof p);
+    assert_int_equal(mkdir(p, 0755), 0);
+    assert_true(snprintf(q, sizeof q, "%s/slope_p0.ktx", p) < (int)sizeof q);
+    FILE *f = fopen(q, "wb");
+    assert_non_null(f);
+    fclose(f);
+    save(&a, "own");
+    assert_int_not_equal(access(p, F_OK), 0);
     tables_destroy(&a);
 }
 
@@ -494,6 +554,7 @@ int main(void)
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_missing_swapped_modified_unlisted),
         cmocka_unit_test(test_leftover_temp_files),
+        cmocka_unit_test(test_ownership),
         cmocka_unit_test(test_verify),
         cmocka_unit_test(test_manifest_corruption),
     };
