@@ -107,6 +107,12 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
 {
     int w = 0, h = 0;
     ph->be->size(ph->p, &w, &h);
+    float fov = o->camera.fov_y_deg > 0.0f ? o->camera.fov_y_deg : CAMERA_FOV_DEFAULT_DEG;
+    float fov_drawn = camera_fov_covered(fov, h > 0 ? (float)w / (float)h : 1.0f);
+    if (fov_drawn < fov)
+        printf("swell: %dx%d is wider than the sea's grid covers at a %.0f deg vertical field of "
+               "view (a half diagonal of at most %.0f deg): drawn at %.1f deg\n", w, h,
+               (double)fov, CAMERA_HALF_DIAGONAL_MAX_DEG, (double)fov_drawn);
     int frames = o->frames;
     if (frames < 0) {
         double fps = o->fps > 0 ? o->fps : DEFAULT_FPS;

@@ -130,6 +130,16 @@ void camera_basis(double h_deg, double p_deg, double fwd[3], double right[3], do
     up[2] = right[0] * fwd[1] - right[1] * fwd[0];
 }
 
+float camera_fov_covered(float fov_y_deg, float aspect)
+{
+    double fov = fov_y_deg > 0.0f ? fov_y_deg : CAMERA_FOV_DEFAULT_DEG;
+    double ty = tan(0.5 * fov * M_PI / 180.0), a = aspect > 0.0f ? aspect : 1.0;
+    double tmax = tan(CAMERA_HALF_DIAGONAL_MAX_DEG * M_PI / 180.0);
+    if (ty * sqrt(1.0 + a * a) <= tmax)
+        return (float)fov;
+    return (float)(2.0 * atan(tmax / sqrt(1.0 + a * a)) * 180.0 / M_PI);
+}
+
 void camera_frame_make(const struct camera *c, int width, int height, struct camera_frame *out)
 {
     memset(out, 0, sizeof *out);

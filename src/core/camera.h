@@ -50,6 +50,10 @@ const char *camera_path_name(int path);
 
 /* The field of view when the camera's is 0, degrees. */
 #define CAMERA_FOV_DEFAULT_DEG 45.0f
+/* The widest view the projected grid covers: half its diagonal field of view at most 75 deg
+ * (the projector keeps its rays within 81 deg of its axis, geometry/grid_project.c). A 45 deg
+ * view is within it up to an aspect of 8.5:1; 16:1 had left the sides of the horizon bare. */
+#define CAMERA_HALF_DIAGONAL_MAX_DEG 75.0
 /* Pixel footprints are taken from at least this altitude, m (a camera at the surface). */
 #define CAMERA_FOOTPRINT_MIN_ALT_M 0.5
 
@@ -69,6 +73,11 @@ struct camera_frame {
     mat4 view_rel, proj;        /* camera-relative view (translation removed), projection */
     mat4 world_to_clip;         /* proj x view_rel: camera-relative world to clip space */
 };
+
+/* fov_y_deg (0: the default) narrowed where a view of this aspect would pass
+ * CAMERA_HALF_DIAGONAL_MAX_DEG: a panoramic strip keeps the widest diagonal the sea covers
+ * and loses vertical angle ("Vert-"), instead of drawing bare sides. */
+float camera_fov_covered(float fov_y_deg, float aspect);
 
 void camera_frame_make(const struct camera *c, int width, int height, struct camera_frame *out);
 

@@ -328,6 +328,10 @@ int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s
         .cam = *user_cam, .width = width, .height = height,
         .flags = RENDERER_CLEAR | (r->d.no_sky ? 0 : RENDERER_SKY),
     };
+    /* the program's own projection: no wider than the grid covers (an embedding application
+     * brings its own, renderer_draw) */
+    v.cam.fov_y_deg = camera_fov_covered(user_cam->fov_y_deg,
+                                         height > 0 ? (float)width / (float)height : 1.0f);
     return renderer_draw(r, &v, t_s, err);
 }
 

@@ -118,7 +118,9 @@ int  renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, ui
                    struct swell_err *err);
 /* Draw one frame at time t_s (s) into the framebuffer bound now, viewport width x height.
  * A camera less than CAMERA_CLEARANCE_M above the sea surface under it (the displaced
- * surface this frame draws) is drawn from that height above it instead. */
+ * surface this frame draws) is drawn from that height above it instead. A view wider than
+ * the grid covers (camera_fov_covered: panoramic strips past 8.5:1) is drawn with its vertical
+ * field of view narrowed to fit. */
 int  renderer_frame(struct renderer *r, const struct camera *cam, double t_s, int width,
                     int height, struct swell_err *err);
 

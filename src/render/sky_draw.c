@@ -129,6 +129,19 @@ static int update_sky_view(struct renderer *r, double alt_m, struct swell_err *e
 }
 
 
+/* The sphere's horizon at azimuth a (dip below the level) in NDC: 1 and its y when it is in
+ * front and within the screen's width. */
+static int horizon_ndc(mat4 world_to_clip, double dip, float a, float *y)
+{
+    vec4 dir = { (float)cos(dip) * cosf(a), (float)cos(dip) * sinf(a), (float)-sin(dip), 0.0f },
+         clip;
+    glm_mat4_mulv(world_to_clip, dir, clip);
+    if (!(clip[3] > 0.0f && fabsf(clip[0]) <= clip[3]))
+        return 0;
+    *y = clip[1] / clip[3];
+    return 1;
+}
+
 /* The sky is drawn only above the horizon (a scissor from just below the horizon's row up):
  * below it the sea covers every pixel, and a full-screen sky pass there was pure overdraw. */
 int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_err *err)
@@ -145,13 +158,29 @@ int draw_sky(struct renderer *r, const struct camera_frame *view, struct swell_e
     double alt = fmax(cam->pos[2], 0.0);
     double dip = acos(EARTH_RADIUS_M / (EARTH_RADIUS_M + alt));
     float hz = 2.0f;   /* NDC y of the lowest horizon point in view */
+    float prev_a = 0.0f;
+    int prev_in = 0;
     for (int k = 0; k <= 64; k++) {
-        float a = h + (float)M_PI * ((float)k / 64.0f - 0.5f);
-        vec4 dir = { (float)cos(dip) * cosf(a), (float)cos(dip) * sinf(a), (float)-sin(dip),
-                     0.0f }, clip;
-        glm_mat4_mulv(world_to_clip, dir, clip);
-        if (clip[3] > 0.0f && fabsf(clip[0]) <= 1.05f * clip[3])
-            hz = fminf(hz, clip[1] / clip[3]);
+        float a = h + (float)M_PI * ((float)k / 64.0f - 0.5f), y;
+        int in = horizon_ndc(world_to_clip, dip, a, &y);
+        if (in)
+            hz = fminf(hz, y);
+        /* where the curve leaves the screen between two samples it may still be falling (a
+         * panoramic view from high up): its row at the screen's edge, found by bisection */
+        if (k > 0 && in != prev_in) {
+            float lo = in ? prev_a : a, hi = in ? a : prev_a;   /* lo out, hi in */
+            for (int it = 0; it < 24; it++) {
+                float mid = 0.5f * (lo + hi);
+                if (horizon_ndc(world_to_clip, dip, mid, &y))
+                    hi = mid;
+                else
+                    lo = mid;
+            }
+            if (horizon_ndc(world_to_clip, dip, hi, &y))
+                hz = fminf(hz, y);
+        }
+        prev_a = a;
+        prev_in = in;
     }
     if (hz > 1.5f || view->up[2] <= 0.0)
         hz = -1.0f;   /* no horizon in view, or the view rolled upside down (the sky below the

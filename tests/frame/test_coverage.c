@@ -8,7 +8,8 @@
  * it (renderer.h); the projected grid's range holds what displacement can reach (grid.c).
  * At the forced gles2-min tier (CPU geometry) for every preset; a share again on gles3, whose
  * grid is built in the vertex shader from the same frame, and with --geometry patches; and a
- * share rolled, any angle (upside down included), from a stream of its own.
+ * share rolled, any angle (upside down included), from a stream of its own; and a share as
+ * panoramic strips of 16:1 and 32:1 (viewports of the bottom rows).
  * A failure prints the pose as a `swell` command line.
  */
 #include <math.h>
@@ -30,15 +31,18 @@
 
 #define W 128
 #define H 72
+#define SW 512                 /* the surface: wide enough for the strips' viewports */
 #define POSES_MIN 80           /* gles2-min poses per preset (5 presets: 400 in all) */
 #define POSES_OTHER 20        /* per preset on gles3 and with patches */
 #define POSES_ROLL 16         /* per preset with the camera rolled (gles2-min and gles3) */
+#define POSES_WIDE 12         /* per preset as a panoramic strip, 16:1 or 32:1 */
 
 static struct platform_handle g_ph;
-static uint8_t g_img[W * H * 4];
+static uint8_t g_img[SW * H * 4];
 
 static uint64_t g_rng = 0x5eed2026u;
 static uint64_t g_roll_rng = 0x5eed2612u;   /* its own stream: the unrolled poses as before */
+static uint64_t g_wide_rng = 0x5eed1217u;   /* the panoramic strips' pitch, likewise */
 
 /* xorshift64*: a fixed seed, the same poses on every machine */
 static double next_uniform(uint64_t *s)
@@ -65,11 +69,16 @@ static void random_pose(struct camera *c, double *t)
     *t = 1000.0 * uniform();
 }
 
-static int uncovered(const uint8_t *img)
+/* Magenta pixels in the viewport vw x vh at the surface's bottom left: the image's (top row
+ * first) last vh rows, first vw columns. */
+static int uncovered(const uint8_t *img, int vw, int vh)
 {
     int n = 0;
-    for (int k = 0; k < W * H; k++)
-        n += img[4 * k] == 255 && img[4 * k + 1] == 0 && img[4 * k + 2] == 255;
+    for (int y = H - vh; y < H; y++)
+        for (int x = 0; x < vw; x++) {
+            const uint8_t *q = img + 4 * ((size_t)y * SW + x);
+            n += q[0] == 255 && q[1] == 0 && q[2] == 255;
+        }
     return n;
 }
 
@@ -77,6 +86,9 @@ struct run {
     const char *preset;
     int tier, geometry, quality, poses;
     int roll;                   /* 1: each pose also rolled, -180..180 deg */
+    int vh;                     /* 0: a W x H viewport; else a panoramic strip SW x vh, drawn
+                                   with its field of view narrowed to what the grid covers
+                                   (camera_fov_covered) */
 };
 
 /* Render `poses` random poses of one preset; returns how many left pixels uncovered. */
@@ -105,19 +117,22 @@ static int fuzz(const struct swell_tables *t, const struct run *ru, int *raised)
         random_pose(&c, &t_s);
         if (ru->roll)
             c.roll_deg = (float)(360.0 * next_uniform(&g_roll_rng) - 180.0);
-        if (frame_draw(&g_ph, r, &c, t_s, W, H, g_img, &err))
+        if (ru->vh)   /* strips look at the horizon, where their sides had been bare */
+            c.pitch_deg = (float)(30.0 * next_uniform(&g_wide_rng) - 15.0);
+        int vw = ru->vh ? SW : W, vh = ru->vh ? ru->vh : H;
+        if (frame_draw(&g_ph, r, &c, t_s, vw, vh, g_img, &err))
             fail_msg("frame: %s", err.msg);
         renderer_get_stats(r, &st);
         *raised += st.camera_raise_m > 0.0;
-        int n = uncovered(g_img);
+        int n = uncovered(g_img, vw, vh);
         if (n > 0) {
             bad++;
             print_error("%d of %d pixels uncovered: swell --preset %s --tier %s --geometry %s "
                         "--quality %s --size %dx%d --sun 35,20 --camera %.3f,%.3f,%.4f "
                         "--heading %.3f --pitch %.3f --roll %.3f --time %.4f --debug uncovered\n", n,
-                        W * H, ru->preset, gpu_tier_name(ru->tier),
-                        geometry_kind_name(ru->geometry), render_quality_name(ru->quality), W,
-                        H, c.pos[0], c.pos[1], c.pos[2], (double)c.heading_deg,
+                        vw * vh, ru->preset, gpu_tier_name(ru->tier),
+                        geometry_kind_name(ru->geometry), render_quality_name(ru->quality), vw,
+                        vh, c.pos[0], c.pos[1], c.pos[2], (double)c.heading_deg,
                         (double)c.pitch_deg, (double)c.roll_deg, t_s);
         }
     }
@@ -141,12 +156,16 @@ static void test_camera_fuzz(void **state)
         if (swell_bake(&ss, NULL, &t, &err))
             fail_msg("swell_bake %s: %s", presets[p], err.msg);
         const struct run runs[] = {
-            { presets[p], TIER_GLES2_MIN, GEOMETRY_GRID, QUALITY_HIGH, POSES_MIN, 0 },
+            { presets[p], TIER_GLES2_MIN, GEOMETRY_GRID, QUALITY_HIGH, POSES_MIN, 0, 0 },
             { presets[p], TIER_GLES3, GEOMETRY_GRID, p % 2 ? QUALITY_LOW : QUALITY_HIGH,
-              POSES_OTHER, 0 },
-            { presets[p], TIER_GLES2_MIN, GEOMETRY_PATCHES, QUALITY_LOW, POSES_OTHER, 0 },
+              POSES_OTHER, 0, 0 },
+            { presets[p], TIER_GLES2_MIN, GEOMETRY_PATCHES, QUALITY_LOW, POSES_OTHER, 0, 0 },
             { presets[p], p % 2 ? TIER_GLES3 : TIER_GLES2_MIN, GEOMETRY_GRID,
-              p % 2 ? QUALITY_HIGH : QUALITY_LOW, POSES_ROLL, 1 },
+              p % 2 ? QUALITY_HIGH : QUALITY_LOW, POSES_ROLL, 1, 0 },
+            /* panoramic strips, 16:1 and 32:1 (their sides had been left bare), unrolled and
+             * rolled */
+            { presets[p], TIER_GLES2_MIN, GEOMETRY_GRID, QUALITY_HIGH, POSES_WIDE, p % 2,
+              p % 2 ? 16 : 32 },
         };
         for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
             bad += fuzz(&t, &runs[k], &raised);
@@ -163,7 +182,7 @@ static void test_camera_fuzz(void **state)
 
 int main(void)
 {
-    int open_rc = frame_open("test_coverage", W, H, &g_ph);
+    int open_rc = frame_open("test_coverage", SW, H, &g_ph);
     if (open_rc)
         return open_rc;
     const struct CMUnitTest tests[] = {
