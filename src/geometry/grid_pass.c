@@ -523,7 +523,7 @@ int grid_update(struct grid *g, const struct camera_frame *view, double t_s, flo
         if (!disp_on && !p->cpu && !p->kcpu)
             continue;
         grid_uv_offset(g->t, i, cam, o);
-        stream_loop_phase(t_s, tables_pattern_period(g->t, i), g->t->frames, &ph);
+        stream_pattern_phase(g->t, i, t_s, g->t->frames, &ph);
         if (disp_on) {
             struct disp_frame *d = &df[nd++];
             int nx = p->disp->width, ny = p->disp->height;

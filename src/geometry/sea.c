@@ -46,7 +46,7 @@ static void displace(const struct swell_tables *t, int detile, const float *weig
             continue;
         if (weight && weight[i] <= 0.0f)
             continue;
-        stream_loop_phase(t_s, tables_pattern_period(t, i), tb->layers, &ph);
+        stream_pattern_phase(t, i, t_s, tb->layers, &ph);
         /* uv = world / L (grid_uv_offset + rest / L), read at three random offsets blended
          * (detile.h); texel centres at (i + 0.5) / n */
         struct detile_taps tp;

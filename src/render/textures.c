@@ -153,7 +153,7 @@ void stream_disp(struct renderer *r, double t_s)
         const struct swell_table *d = tables_find(r->t, TABLE_DISP, i);
         struct stream_phase ph;
         int want[2], *have = r->disp_frame[i];
-        stream_loop_phase(t_s, tables_pattern_period(r->t, i), r->t->frames, &ph);
+        stream_pattern_phase(r->t, i, t_s, r->t->frames, &ph);
         want[0] = ph.f0 < d->layers ? ph.f0 : 0;
         want[1] = ph.f1 < d->layers ? ph.f1 : 0;
         for (int k = 0; k < 2; k++) {
@@ -265,7 +265,7 @@ void stream_textures(struct renderer *r, double t_s)
     for (int s = 0; s < r->nfs; s++) {
         struct fs_slot *sl = &r->slot[s];
         struct stream_phase ph;
-        stream_loop_phase(t_s, tables_pattern_period(r->t, sl->pattern), r->t->frames, &ph);
+        stream_pattern_phase(r->t, sl->pattern, t_s, r->t->frames, &ph);
         if (sl->phase_valid && ph.f0 == sl->phase.f0 && ph.w == sl->phase.w)
             continue;
         sl->phase = ph;

@@ -3,18 +3,36 @@
 #include <string.h>
 #include "tables/stream.h"
 
-void stream_loop_phase(double t_s, double period_s, int frames, struct stream_phase *out)
+/* u in [0, 1): how far through the loop. */
+static void phase_of(double u, int frames, struct stream_phase *out)
 {
-    double u = period_s > 0.0 ? fmod(t_s, period_s) / period_s : 0.0;
-    if (u < 0.0)
-        u += 1.0;
     /* One integer phase for the whole loop so t and t + T land on the same value. */
     long long q = (long long)floor(u * (double)frames * STREAM_W_ONE + 0.5);
     long long total = (long long)frames * STREAM_W_ONE;
-    q %= total;
+    q = total > 0 ? q % total : 0;
     out->f0 = (int)(q / STREAM_W_ONE);
     out->w = (int)(q % STREAM_W_ONE);
     out->f1 = frames > 0 ? (out->f0 + 1) % frames : 0;
+}
+
+static double loop_fraction(double t_s, double period_s)
+{
+    double u = period_s > 0.0 ? fmod(t_s, period_s) / period_s : 0.0;
+    return u < 0.0 ? u + 1.0 : u;
+}
+
+void stream_loop_phase(double t_s, double period_s, int frames, struct stream_phase *out)
+{
+    phase_of(loop_fraction(t_s, period_s), frames, out);
+}
+
+void stream_pattern_phase(const struct swell_tables *s, int pattern, double t_s, int frames,
+                          struct stream_phase *out)
+{
+    double T = s->loop_period_s, Ti = tables_pattern_period(s, pattern);
+    double m = T > 0.0 && Ti > 0.0 ? floor(T / Ti + 0.5) : 1.0;   /* T_i = T / m, m whole */
+    double u = loop_fraction(t_s, T) * (m >= 1.0 ? m : 1.0);
+    phase_of(u - floor(u), frames, out);
 }
 
 size_t stream_level_offset(const struct swell_table *t, int level)

@@ -21,6 +21,11 @@ struct stream_phase {
 
 /* Phase in the loop of `frames` frames over period_s at time t_s (any sign, any size). */
 void stream_loop_phase(double t_s, double period_s, int frames, struct stream_phase *out);
+/* The same for pattern i of set s at time t_s: its loop T_i = T / m (bake.c) taken as m
+ * turns of the set's loop T, from t mod T, so t and t + kT agree for any k. (t mod T_i drifted:
+ * T_i = 16/3 s is not a float, and at a day the frames were 0.0005 of a loop off.) */
+void stream_pattern_phase(const struct swell_tables *s, int pattern, double t_s, int frames,
+                          struct stream_phase *out);
 
 /* Bytes of one blended image of t (one layer, every level) and the offset of a level in it. */
 size_t stream_blended_bytes(const struct swell_table *t);

@@ -121,6 +121,35 @@ static void test_filter_weight(void **state)
     }
 }
 
+/* A pattern's phase from the set's loop: t and t + k T agree for k up to 1e8 (over three
+ * years at T = 16 s; t mod T_i had drifted within a day, T_i = 16/3 s not being a float), and
+ * it is the phase of its own loop T_i. */
+static void test_pattern_phase_exact(void **state)
+{
+    (void)state;
+    struct swell_tables s;
+    memset(&s, 0, sizeof s);
+    s.loop_period_s = 16.0f;
+    s.pattern[0].period_s = 16.0f;
+    s.pattern[1].period_s = 16.0f / 3.0f;
+    s.pattern[2].period_s = 16.0f / 7.0f;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 40; j++) {
+            double t = 0.391 * j;
+            struct stream_phase a, b, own;
+            stream_pattern_phase(&s, i, t, 16, &a);
+            for (double k = 1.0; k <= 1e8; k *= 10.0) {
+                stream_pattern_phase(&s, i, t + k * 16.0, 16, &b);
+                assert_int_equal(a.f0, b.f0);
+                assert_int_equal(a.w, b.w);
+            }
+            stream_loop_phase(t, 16.0 / (i == 0 ? 1 : i == 1 ? 3 : 7), 16, &own);
+            int qa = a.f0 * STREAM_W_ONE + a.w, qo = own.f0 * STREAM_W_ONE + own.w;
+            int d = abs(qa - qo);
+            assert_true(d <= 1 || d >= 16 * STREAM_W_ONE - 1);
+        }
+}
+
 /* Blend against a brute-force blend, and t vs t + k T. */
 static void test_stream_blend(void **state)
 {
@@ -235,6 +264,7 @@ int main(void)
         cmocka_unit_test(test_projected_grid_hits_its_rays),
         cmocka_unit_test(test_filter_weight),
         cmocka_unit_test(test_stream_blend),
+        cmocka_unit_test(test_pattern_phase_exact),
         cmocka_unit_test(test_sky_zenith_closed_form),
         cmocka_unit_test(test_sky_irradiance),
     };

@@ -270,7 +270,7 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
         float off[2][2];
         assert_true(grid_update(g, frame_of(&c), t_s, verts) > 0);
         for (int i = 0; i < 2; i++) {
-            stream_loop_phase(t_s, tables_pattern_period(&s, i), F, &ph[i]);
+            stream_pattern_phase(&s, i, t_s, F, &ph[i]);
             grid_uv_offset(&s, i, &c, off[i]);
         }
         for (int j = 0; j < h; j++)
