@@ -22,6 +22,16 @@ FUZZ_SECONDS ?= 30
 # ---------------------------------------------------------------------------------------------
 
 PKG_CONFIG ?= pkg-config
+# binutils matching CC (CC=aarch64-linux-gnu-gcc: aarch64-linux-gnu-ld, -ar, -objcopy), unless
+# given on the command line or in the environment
+TOOL_PREFIX := $(patsubst %gcc,%,$(filter %-gcc,$(notdir $(CC))))
+ifeq ($(origin LD),default)
+LD := $(TOOL_PREFIX)ld
+endif
+ifeq ($(origin AR),default)
+AR := $(TOOL_PREFIX)ar
+endif
+OBJCOPY ?= $(TOOL_PREFIX)objcopy
 # the library's packages; the programs add the KMS back-end's
 LIB_PKGS := fftw3f libpng zlib cglm egl glesv2
 PKGS := $(LIB_PKGS) gbm libdrm libinput libudev
@@ -37,7 +47,7 @@ $(error pkg-config finds no $(strip $(MISSING_PKGS)): run `make deps` (as root) 
 endif
 endif
 
-WARN := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Werror=implicit-function-declaration \
+WARN := -std=c11 -D_GNU_SOURCE -D_FILE_OFFSET_BITS=64 -Wall -Wextra -Wshadow -Werror=implicit-function-declaration \
         -Wno-unused-parameter
 SANFLAGS := $(if $(SAN),-fsanitize=$(SAN) -fno-omit-frame-pointer -fno-sanitize-recover=all,)
 CFLAGS ?= -g
@@ -113,7 +123,7 @@ FORCE:
 $(LIB): $(LIB_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@
-	ar rcs $@ $^
+	$(AR) rcs $@ $^
 
 # libswell.so: only swell.h's symbols exported (-fvisibility=hidden, SWELL_API)
 $(SHLIB): $(PUB_OBJ)
@@ -128,9 +138,9 @@ $(SHLIB): $(PUB_OBJ)
 $(STLIB): $(PUB_OBJ)
 	@mkdir -p $(dir $@)
 	$(LD) -r -o $(BUILD)/lib/swell-all.o $^
-	objcopy --localize-hidden $(BUILD)/lib/swell-all.o
+	$(OBJCOPY) --localize-hidden $(BUILD)/lib/swell-all.o
 	rm -f $@
-	ar rcs $@ $(BUILD)/lib/swell-all.o
+	$(AR) rcs $@ $(BUILD)/lib/swell-all.o
 
 $(PC): tools/swell.pc.in include/swell.h
 	@mkdir -p $(dir $@)

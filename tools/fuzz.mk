@@ -21,11 +21,11 @@ FUZZ_FLAGS ?=
 # ---------------------------------------------------------------------------------------------
 
 FUZZ_TARGETS := fuzz_ktx fuzz_manifest fuzz_preset
-# Only the loaders and what they call: the GL modules are not fuzzed, so they are not built.
-FUZZ_LIB_SRC := $(addprefix src/core/,datadir.c err.c fsutil.c kv.c parse.c preset.c seastate.c) \
-                $(addprefix src/tables/,ktx.c set_check.c tables.c tables_io.c)
+# The layers below the GL ones, whole (a module added there is built here too): the loaders
+# and the CPU side of the sea; the GL modules are not fuzzed, so they are not built.
+FUZZ_LIB_SRC := $(wildcard src/core/*.c src/tables/*.c)
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FUZZ_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Wshadow -Wno-unused-parameter -O1 -g \
+FUZZ_CFLAGS := -std=c11 -D_GNU_SOURCE -D_FILE_OFFSET_BITS=64 -Wall -Wextra -Wshadow -Wno-unused-parameter -O1 -g \
                $(FUZZ_SAN) -Iinclude -Isrc -I$(BUILD)/gen -Itests/fuzz
 FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:src/%.c=$(FUZZ_BUILD)/obj/%.o)
 FUZZ_BIN := $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/%)
@@ -42,7 +42,7 @@ $(FUZZ_BUILD)/obj/core/datadir.o: $(BUILD)/gen/datadir_paths.h
 $(FUZZ_BUILD)/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h $(FUZZ_LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_LIB_OBJ) \
-	    $(shell pkg-config --libs zlib) -lm
+	    $(shell $(PKG_CONFIG) --libs zlib libpng) -lm
 
 fuzz-build: $(FUZZ_BIN)
 
