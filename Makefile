@@ -80,7 +80,7 @@ FRAME_BIN := $(FRAME_SRC:tests/frame/%.c=$(BUILD)/tests/%)
 SWELL := $(BUILD)/swell
 SWELL_BAKE := $(BUILD)/swell-bake
 
-.PHONY: all deps run install uninstall test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden test-devices
+.PHONY: all deps run install uninstall test test-unit test-unit-O0 test-shaders test-frame test-kms bench fuzz clean golden test-devices test-cross test-unit-exec
 
 all: $(SWELL_BAKE) $(SWELL) $(SHLIB) $(STLIB) $(PC)
 
@@ -209,6 +209,11 @@ test:
 	$(if $(SAN),,$(MAKE) test-kms)
 	@echo "make test$(if $(SAN), SAN=$(SAN),): all suites passed"
 
+# compares two PNGs (make test-cross)
+IMAGE_DIFF := $(BUILD)/tools/image-diff
+$(IMAGE_DIFF): $(BUILD)/tools/image_diff.o $(LIB)
+	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+
 # seals an edited manifest again, so tests/cli/test_bad_input.sh reaches the value checks
 MANIFEST_RESEAL := $(BUILD)/tools/manifest-reseal
 $(MANIFEST_RESEAL): $(BUILD)/tools/manifest_reseal.o $(LIB)
@@ -216,6 +221,17 @@ $(MANIFEST_RESEAL): $(BUILD)/tools/manifest_reseal.o $(LIB)
 
 test-unit: $(UNIT_BIN) all $(MANIFEST_RESEAL)
 	@tools/run-tests.sh unit $(BUILD) $(UNIT_BIN) $(CLI_TESTS)
+
+# issue 17 item 6: swell built for CROSS_ARCH (arm64; armhf where its packages install) with
+# Debian's cross toolchain, its C unit tests under qemu-user, one frame against this machine's
+# (tools/cross-test.sh); CI runs it for arm64
+CROSS_ARCH ?= arm64
+test-cross: all $(IMAGE_DIFF)
+	@tools/cross-test.sh $(CROSS_ARCH) $(BUILD)
+
+# the C unit tests alone, through SWELL_EXEC (a runner for another architecture's programs)
+test-unit-exec: $(filter-out %.sh,$(UNIT_BIN)) all
+	@SWELL_EXEC="$(SWELL_EXEC)" tools/run-tests.sh unit $(BUILD) $(filter-out %.sh,$(UNIT_BIN))
 
 # CPU numerics again without optimisation (catches UB that -O2 hides and vice versa)
 test-unit-O0:

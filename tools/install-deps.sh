@@ -1,10 +1,12 @@
 #!/bin/sh
 # install-deps.sh - install the Debian 12 packages swell needs, if any are missing.
 # As root it runs apt-get; otherwise it prints the exact command to run. Idempotent and quick
-# when everything is present. Usage: tools/install-deps.sh [--test] [--kms]
+# when everything is present. Usage: tools/install-deps.sh [--test] [--kms] [--cross ARCH]
 #   (none)  what building and running swell need (`make run`, `make install`)
 #   --test  adds the test and benchmark tools (`make test`, `make bench`)
 #   --kms   adds the KMS VM test kit (`make test-kms`, part of `make test`)
+#   --cross ARCH  adds ARCH (arm64, armhf) to dpkg and its cross compiler, the libraries above
+#           for ARCH and qemu-user (`make test-cross`)
 set -eu
 
 # package: what swell uses it for (README "Dependencies" lists the same)
@@ -22,13 +24,24 @@ clang libclang-rt-14-dev
 jq gnuplot-nox"
 KMS_PKGS="qemu-system-x86 busybox-static linux-image-amd64 kmod xz-utils cpio"
 
+# the libraries for another architecture (multiarch: name:ARCH)
+CROSS_LIBS="libfftw3-dev libpng-dev zlib1g-dev libcglm-dev libegl-dev libgles-dev libegl-mesa0
+libgl1-mesa-dri libgbm-dev libdrm-dev libinput-dev libudev-dev libcmocka-dev"
+
 want="$PKGS"
-for arg in "$@"; do
-    case $arg in
+cross=""
+while [ $# -gt 0 ]; do
+    case $1 in
         --test) want="$want $TEST_PKGS" ;;
         --kms) want="$want $KMS_PKGS" ;;
-        *) echo "usage: tools/install-deps.sh [--test] [--kms]" >&2; exit 2 ;;
+        --cross)
+            cross=${2:-}; shift
+            case $cross in arm64|armhf) ;; *) echo "install-deps.sh: --cross arm64|armhf" >&2; exit 2 ;; esac
+            want="$want crossbuild-essential-$cross qemu-user"
+            for p in $CROSS_LIBS; do want="$want $p:$cross"; done ;;
+        *) echo "usage: tools/install-deps.sh [--test] [--kms] [--cross ARCH]" >&2; exit 2 ;;
     esac
+    shift
 done
 
 missing=""
@@ -48,6 +61,9 @@ if [ "$(id -u)" -ne 0 ]; then
     exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
+if [ -n "$cross" ] && ! dpkg --print-foreign-architectures | grep -qx "$cross"; then
+    dpkg --add-architecture "$cross"
+fi
 apt-get update -qq
 # shellcheck disable=SC2086
 apt-get install -y -qq --no-install-recommends $missing

@@ -30,7 +30,9 @@ for t in "$@"; do
     log="$SWELL_TMP/$name.log"
     case "$t" in
         *.sh) "$t" >"$log" 2>&1; rc=$? ;;
-        *) LD_PRELOAD="${preload:-${LD_PRELOAD:-}}" "$t" >"$log" 2>&1; rc=$? ;;
+        # SWELL_EXEC: a runner for programs of another architecture (qemu-aarch64, make
+        # test-cross)
+        *) LD_PRELOAD="${preload:-${LD_PRELOAD:-}}" ${SWELL_EXEC:-} "$t" >"$log" 2>&1; rc=$? ;;
     esac
     if [ "$rc" -eq 0 ]; then
         pass=$((pass + 1)); echo "PASS $suite/$name"
