@@ -20,10 +20,12 @@ FUZZ_BUILD ?= build/fuzz
 FUZZ_FLAGS ?=
 # ---------------------------------------------------------------------------------------------
 
-FUZZ_TARGETS := fuzz_ktx fuzz_manifest fuzz_preset
-# The layers below the GL ones, whole (a module added there is built here too): the loaders
-# and the CPU side of the sea; the GL modules are not fuzzed, so they are not built.
-FUZZ_LIB_SRC := $(wildcard src/core/*.c src/tables/*.c)
+FUZZ_TARGETS := fuzz_ktx fuzz_manifest fuzz_preset fuzz_set
+# The layers below the GL ones, whole (a module added there is built here too): the loaders,
+# the bake and the CPU side of the sea (fuzz_set); the GL modules are not fuzzed, so they are
+# not built.
+FUZZ_LIB_SRC := $(wildcard src/core/*.c src/tables/*.c src/optics/*.c src/bake/*.c \
+                           src/geometry/*.c)
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 FUZZ_CFLAGS := -std=c11 -D_GNU_SOURCE -D_FILE_OFFSET_BITS=64 -Wall -Wextra -Wshadow -Wno-unused-parameter -O1 -g \
                $(FUZZ_SAN) -Iinclude -Isrc -I$(BUILD)/gen -Itests/fuzz
@@ -42,7 +44,7 @@ $(FUZZ_BUILD)/obj/core/datadir.o: $(BUILD)/gen/datadir_paths.h
 $(FUZZ_BUILD)/%: tests/fuzz/%.c tests/fuzz/fuzz_common.h $(FUZZ_LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_LIB_OBJ) \
-	    $(shell $(PKG_CONFIG) --libs zlib libpng) -lm
+	    $(shell $(PKG_CONFIG) --libs zlib libpng fftw3f) -lm -lpthread
 
 fuzz-build: $(FUZZ_BIN)
 
@@ -54,8 +56,9 @@ fuzz: $(FUZZ_BIN)
 	    work=$(FUZZ_BUILD)/corpus/$$t; art=$(FUZZ_BUILD)/artifacts/$$t; \
 	    mkdir -p $$work $$art tests/fuzz/regressions/$$t; rm -f $$art/*; \
 	    echo "fuzz $$t: $(FUZZ_SECONDS) s"; \
+	    dict=tests/fuzz/$$t.dict; [ -e $$dict ] || dict=tests/fuzz/fuzz_manifest.dict; \
 	    $(FUZZ_BUILD)/$$t -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
-	        -print_final_stats=1 -artifact_prefix=$$art/ -dict=tests/fuzz/$$t.dict $(FUZZ_FLAGS) \
+	        -print_final_stats=1 -artifact_prefix=$$art/ -dict=$$dict $(FUZZ_FLAGS) \
 	        $$work tests/fuzz/corpus/$$t > $(FUZZ_BUILD)/$$t.log 2>&1; rc=$$?; \
 	    grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb|^#[0-9]+.*DONE' \
 	        $(FUZZ_BUILD)/$$t.log | sed "s/^/  $$t: /"; \

@@ -100,6 +100,11 @@ out('fuzz_manifest', 'bad_duplicate_key', ma + lines[3] + b'\n')
 out('fuzz_manifest', 'bad_unknown_key', ma + b'set.colour = blue\n')
 out('fuzz_manifest', 'bad_nul_byte', ma.replace(b'\n', b'\0\n', 5))
 out('fuzz_manifest', 'ok_crlf', ma.replace(b'\n', b'\r\n'))
+# fuzz_set: manifests whose accepted values go on into the CPU side of the renderer
+out('fuzz_set', 'ok_a', ma)
+out('fuzz_set', 'ok_b', mb)
+out('fuzz_set', 'ok_a_unresolved_max', edit(b'set.mss_unresolved_x', b'1'))
+out('fuzz_set', 'bad_frames_0', edit(b'set.frames', b'0'))
 # values that parse but lie (src/tables/set_check.h); the target reseals them
 out('fuzz_manifest', 'bad_frames_0', edit(b'set.frames', b'0'))
 out('fuzz_manifest', 'bad_size_m_0', edit(b'pattern.0.size_m', b'0'))

@@ -24,6 +24,7 @@
 #include "fuzz/fuzz_ktx.c"
 #include "fuzz/fuzz_manifest.c"
 #include "fuzz/fuzz_preset.c"
+#include "fuzz/fuzz_set.c"
 
 #define FUZZ_DIR "tests/fuzz"
 #define REPLAY_MAX_BYTES (4u << 20)
@@ -129,12 +130,21 @@ static void test_replay_preset(void **state)
     replay(&t);
 }
 
+static void test_replay_set(void **state)
+{
+    (void)state;
+    static const struct replay_target t = {"fuzz_set", fuzz_set_one};
+    replay(&t);
+    tables_destroy(&set_base);   /* the target's cached bake */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_replay_ktx),
         cmocka_unit_test(test_replay_manifest),
         cmocka_unit_test(test_replay_preset),
+        cmocka_unit_test(test_replay_set),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
