@@ -12,7 +12,10 @@
 #define SWELL_FUZZ_COMMON_H
 
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
+#include "tables/set_check.h"
 
 #define FUZZ_CHECK(cond, what)                                                         \
     do {                                                                               \
@@ -30,5 +33,16 @@
         FUZZ_CHECK((err).code == (rc), "err.code equals the returned code");           \
         FUZZ_CHECK((err).msg[0] != '\0', "refusal has a message");                     \
     } while (0)
+
+/* A copy of a manifest input sealed again (set_check.h manifest_reseal) in *text (free it);
+ * the sealed length, 0 when the input does not end with a newline. */
+static inline size_t fuzz_resealed(const uint8_t *data, size_t size, char **text)
+{
+    *text = malloc(size + 64);
+    FUZZ_CHECK(*text != NULL, "allocate the resealed copy");
+    if (size)
+        memcpy(*text, data, size);
+    return manifest_reseal(*text, size, size + 64);
+}
 
 #endif

@@ -59,11 +59,8 @@ static int fuzz_manifest_read(const uint8_t *data, size_t size)
 static int fuzz_manifest_one(const uint8_t *data, size_t size)
 {
     int raw = fuzz_manifest_read(data, size);
-    char *text = malloc(size + 64);
-    FUZZ_CHECK(text != NULL, "allocate the resealed copy");
-    if (size)
-        memcpy(text, data, size);
-    size_t n = manifest_reseal(text, size, size + 64);
+    char *text = NULL;
+    size_t n = fuzz_resealed(data, size, &text);
     int rc = n ? fuzz_manifest_read((const uint8_t *)text, n) : raw;
     free(text);
     return rc;

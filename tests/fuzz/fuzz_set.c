@@ -101,11 +101,8 @@ static void draw_on_cpu(const struct swell_tables *t)
 
 static int fuzz_set_one(const uint8_t *data, size_t size)
 {
-    char *text = malloc(size + 64);
-    FUZZ_CHECK(text != NULL, "allocate the text");
-    if (size)
-        memcpy(text, data, size);
-    size_t n = manifest_reseal(text, size, size + 64);
+    char *text = NULL;
+    size_t n = fuzz_resealed(data, size, &text);
     struct tables_manifest *m = malloc(sizeof *m);
     FUZZ_CHECK(m != NULL, "allocate the manifest");
     struct swell_err err;
