@@ -17,7 +17,14 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 # SWELL_SAN_PRELOAD and pass it to the swell runs only (sh, sed, ... must not load ASan).
 preload=""
 if grep -qa __asan_init "$build/swell-bake" 2>/dev/null; then
-    drv=$(ls /usr/lib/*/dri/swrast_dri.so /usr/lib/dri/swrast_dri.so 2>/dev/null | head -n 1)
+    # the driver of the build's own architecture (make test-cross installs arm64's beside it)
+    multi=$(ldd "$build/swell-bake" 2>/dev/null |
+            sed -n 's|.*/lib/\([^/ ]*-linux-gnu[^/ ]*\)/libc\.so.*|\1|p' | head -n 1)
+    drv=""
+    for d in ${multi:+/usr/lib/$multi/dri/swrast_dri.so} /usr/lib/*/dri/swrast_dri.so \
+             /usr/lib/dri/swrast_dri.so; do
+        [ -z "$drv" ] && [ -e "$d" ] && drv=$d
+    done
     asan=$(ldd "$build/swell-bake" 2>/dev/null | sed -n 's/.*libasan[^ ]* => \([^ ]*\).*/\1/p')
     [ -n "$drv" ] && preload="${asan:+$asan:}$drv"
 fi
