@@ -101,6 +101,24 @@ static int split(const char *path, char *parent, char *base, struct swell_err *e
     return 0;
 }
 
+/* The flock on path's parent folder (blocking; bakes hold it for milliseconds): its fd, or -1
+ * with err set. Closing the fd releases it. */
+static int lock_parent(const char *path, struct swell_err *err)
+{
+    char parent[SET_DIR_PATH_MAX], base[SET_DIR_PATH_MAX];
+    if (split(path, parent, base, err) != 0)
+        return -1;
+    int fd = open(parent, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0 || flock(fd, LOCK_EX) != 0) {
+        swell_fail(err, SWELL_E_IO, "cannot lock '%s' to publish the set: %s", parent,
+                   strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        return -1;
+    }
+    return fd;
+}
+
 int set_dir_begin(struct set_dir *p, const char *dir, struct swell_err *err)
 {
     memset(p, 0, sizeof *p);
@@ -125,8 +143,6 @@ int set_dir_begin(struct set_dir *p, const char *dir, struct swell_err *err)
         if (stat(p->target, &st) != 0 || !S_ISDIR(st.st_mode))
             return swell_fail(err, SWELL_E_IO, "'%s' exists but is not a directory; remove it "
                               "or choose another output directory", dir);
-        if ((rc = check_owned(p->target, err)))
-            return rc;
     } else if (errno == ENOENT) {
         if ((rc = fs_mkdir_p(parent, err)))
             return rc;
@@ -135,9 +151,23 @@ int set_dir_begin(struct set_dir *p, const char *dir, struct swell_err *err)
     } else {
         return swell_fail(err, SWELL_E_IO, "cannot look at '%s': %s", dir, strerror(errno));
     }
-    if (cat2(p->tmp, p->target, TMP_INFIX "XXXXXX") != 0 || !mkdtemp(p->tmp))
-        return swell_fail(err, SWELL_E_IO, "cannot create directory '%s': %s; check the "
-                          "parent's permissions", p->tmp, strerror(errno));
+    /* Under the parent's lock: the check of what dir holds (another bake's swap, under it too,
+     * is not half done), and the new folder made and locked, so another bake's clean_stale
+     * (under it as well) never finds it unlocked and takes it for a killed bake's. */
+    int lock = lock_parent(p->target, err);
+    if (lock < 0)
+        return err ? err->code : SWELL_E_IO;
+    if (lstat(p->target, &st) == 0 && (rc = check_owned(p->target, err)) != 0) {
+        close(lock);
+        return rc;
+    }
+    if (cat2(p->tmp, p->target, TMP_INFIX "XXXXXX") != 0 || !mkdtemp(p->tmp)) {
+        rc = swell_fail(err, SWELL_E_IO, "cannot create directory '%s': %s; check the "
+                        "parent's permissions", p->tmp, strerror(errno));
+        p->tmp[0] = '\0';
+        close(lock);
+        return rc;
+    }
     /* mkdtemp makes 0700; the set's folder gets what mkdir(0777) would */
     p->tmp_fd = open(p->tmp, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (chmod(p->tmp, 0777 & ~fs_umask()) != 0 || p->tmp_fd < 0 ||
@@ -145,6 +175,7 @@ int set_dir_begin(struct set_dir *p, const char *dir, struct swell_err *err)
         rc = swell_fail(err, SWELL_E_IO, "cannot prepare '%s': %s", p->tmp, strerror(errno));
         set_dir_abort(p);
     }
+    close(lock);
     return rc;
 }
 
@@ -200,10 +231,9 @@ int set_dir_commit(struct set_dir *p, struct swell_err *err)
 {
     char parent[SET_DIR_PATH_MAX], base[SET_DIR_PATH_MAX];
     int rc = split(p->target, parent, base, err);
-    int lock = rc ? -1 : open(parent, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (rc == 0 && (lock < 0 || flock(lock, LOCK_EX) != 0))
-        rc = swell_fail(err, SWELL_E_IO, "cannot lock '%s' to publish the set: %s", parent,
-                        strerror(errno));
+    int lock = rc ? -1 : lock_parent(p->target, err);
+    if (rc == 0 && lock < 0)
+        rc = err ? err->code : SWELL_E_IO;
     if (rc == 0) {
         clean_stale(parent, base);
         struct stat st;
