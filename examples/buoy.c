@@ -1,13 +1,14 @@
 /* buoy.c - swell inside an application's own GLES 2 program: the application makes its EGL
  * context and framebuffer, draws its own background, asks swell to draw the sea with the
  * application's camera matrices, then floats a buoy on the sea where swell's CPU query says
- * the water is, depth-tested against the sea swell drew.
+ * the water is, depth-tested against the sea swell drew. The buoy is drawn once more, into
+ * swell's reflection pass, so the sea reflects it.
  *
  *   cc buoy.c $(pkg-config --cflags --libs swell) -lm -o buoy && ./buoy [frame.ppm]
  *
  * Offscreen (EGL surfaceless, as a test or a batch renderer would run). It checks what it drew
- * and exits 1 if the sea, the buoy or the application's own background is missing, or if the
- * draw left the GL state changed.
+ * and exits 1 if the sea, the buoy, its reflection or the application's own background is
+ * missing, or if the draw left the GL state changed.
  */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -158,7 +159,8 @@ int main(int argc, char **argv)
     swell_ocean *ocean = NULL;
     if (swell_sea_bake(&sd, &sea, &err))
         return fail("baking the sea", &err);
-    swell_ocean_desc od = { .quality = SWELL_QUALITY_LOW, .sun_elev_deg = 25.0f };
+    swell_ocean_desc od = { .quality = SWELL_QUALITY_LOW, .sun_elev_deg = 25.0f,
+                            .sun_azim_deg = 150.0f, .reflections = 1 };
     if (swell_ocean_create(sea, &od, &ocean, &err))
         return fail("creating the ocean", &err);
 
@@ -184,17 +186,43 @@ int main(int argc, char **argv)
     glGetIntegerv(GL_CURRENT_PROGRAM, &before_prog);
     glGetIntegerv(GL_VIEWPORT, before_vp);
     GLboolean before_depth = glIsEnabled(GL_DEPTH_TEST);
+    float rel[3] = { (float)(buoy[0] - eye[0]), (float)(buoy[1] - eye[1]),
+                     (float)(buoy[2] - eye[2]) };
+    /* the sea alone first, to compare with: the same draw with no reflection pass before it */
+    static unsigned char px[W * H * 4], alone[W * H * 4];
+    if (swell_ocean_draw(ocean, &view, t, &err))
+        return fail("drawing the sea", &err);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, alone);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    /* the buoy's reflection: drawn with the pass's mirrored camera, into swell's target */
+    swell_pass pass;
+    swell_reflection_desc rd = { .object_distance_m = 16.0f };
+    if (swell_ocean_begin_reflection(ocean, &view, &rd, &pass, &err))
+        return fail("beginning the reflection pass", &err);
+    float mrel[3] = { (float)(buoy[0] - pass.camera_pos[0]),
+                      (float)(buoy[1] - pass.camera_pos[1]),
+                      (float)(buoy[2] - pass.camera_pos[2]) };
+    draw_buoy(prog, pass.view, pass.proj, mrel);
+    glDisable(GL_DEPTH_TEST);
+    if (swell_ocean_end_reflection(ocean, &err))
+        return fail("ending the reflection pass", &err);
+    glUseProgram(prog);
     if (swell_ocean_draw(ocean, &view, t, &err))
         return fail("drawing the sea", &err);
     glGetIntegerv(GL_CURRENT_PROGRAM, &after_prog);
     glGetIntegerv(GL_VIEWPORT, after_vp);
     int state_kept = before_prog == after_prog && !memcmp(before_vp, after_vp, sizeof after_vp) &&
                      before_depth == glIsEnabled(GL_DEPTH_TEST);
-    float rel[3] = { (float)(buoy[0] - eye[0]), (float)(buoy[1] - eye[1]),
-                     (float)(buoy[2] - eye[2]) };
+    /* the buoy's reflection, before the buoy covers any of it: pixels yellower than the sea
+     * drawn alone */
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    int reflection_px = 0;
+    for (int i = 0; i < W * H; i++) {
+        const unsigned char *p = px + 4 * i, *q = alone + 4 * i;
+        reflection_px += (p[0] + p[1] - 2 * p[2]) - (q[0] + q[1] - 2 * q[2]) > 40;
+    }
     draw_buoy(prog, view.view, view.proj, rel);
 
-    static unsigned char px[W * H * 4];
     glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
     int background = 0, sea_px = 0, buoy_px = 0;
     for (int i = 0; i < W * H; i++) {
@@ -216,12 +244,13 @@ int main(int argc, char **argv)
             fclose(f);
         }
     }
-    printf("buoy: water at (%.1f, %.1f) is %.2f m high; %d sea, %d buoy, %d background pixels;"
-           " GL state %s\n", xy[0], xy[1], at.height_m, sea_px, buoy_px, background,
-           state_kept ? "kept" : "CHANGED");
+    printf("buoy: water at (%.1f, %.1f) is %.2f m high; %d sea, %d buoy, %d reflection, %d "
+           "background pixels; GL state %s\n", xy[0], xy[1], at.height_m, sea_px, buoy_px,
+           reflection_px, background, state_kept ? "kept" : "CHANGED");
     swell_ocean_destroy(ocean);
     swell_sea_destroy(sea);
     eglTerminate(dpy);
-    int ok = sea_px > W * H / 4 && buoy_px > 20 && background > W * H / 10 && state_kept;
+    int ok = sea_px > W * H / 4 && buoy_px > 20 && reflection_px > 10 &&
+             background > W * H / 10 && state_kept;
     return ok ? 0 : 1;
 }

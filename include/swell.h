@@ -28,9 +28,9 @@ extern "C" {
 #endif
 
 #define SWELL_VERSION_MAJOR 0
-#define SWELL_VERSION_MINOR 2
+#define SWELL_VERSION_MINOR 3
 #define SWELL_VERSION_PATCH 0
-#define SWELL_VERSION_STRING "0.2.0"
+#define SWELL_VERSION_STRING "0.3.0"
 /* (major << 16) | (minor << 8) | patch, comparable with swell_version() */
 #define SWELL_VERSION_NUMBER \
     ((SWELL_VERSION_MAJOR << 16) | (SWELL_VERSION_MINOR << 8) | SWELL_VERSION_PATCH)
@@ -162,6 +162,12 @@ typedef struct swell_ocean_desc {
     int texture_unit_count;     /* how many from there swell may bind, at least 3; default 0 =
                                  * as many as the device has (fewer: fewer wave patterns
                                  * shaded per pixel, the rest per vertex) */
+    int reflections;            /* 1: the application's objects reflect in the sea
+                                 * (swell_ocean_begin_reflection): one more texture unit and
+                                 * a target of half the viewport's size as a power of two,
+                                 * at most 512 x 512, RGBA8 with mipmaps and 16-bit depth, and
+                                 * an atlas of its levels (1.9 MiB at 1280 x 720, 3.8 MiB at
+                                 * most); default 0: the sea reflects the sky alone */
 } swell_ocean_desc;
 
 /* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
@@ -198,6 +204,46 @@ typedef struct swell_view {
  * outside the viewport, and inside it only with SWELL_DRAW_CLEAR. */
 SWELL_API int swell_ocean_draw(swell_ocean *ocean, const swell_view *view, double t_s,
                                struct swell_err *err);
+/* ---- objects on the sea: reflections (Hu et al. 2006 §2.2, Bruneton et al. 2010 §6) ---- */
+
+/* The view a pass's objects are drawn with. Draw each object as with a swell_view: its world
+ * position less camera_pos (in double), then view, then proj. */
+typedef struct swell_pass {
+    double camera_pos[3];       /* the eye mirrored in the sea plane z = 0, m */
+    float view[16];             /* world-to-eye, column-major, translation 0: the view's
+                                 * rotation times the mirror (its determinant is -1) */
+    float proj[16];             /* eye-to-clip, column-major: the view's projection a little
+                                 * wider, its near plane the sea plane (what lies under the
+                                 * water is cut; the depth is not the view's) */
+    int viewport[4];            /* the target's, already set: 0, 0, width, height */
+} swell_pass;
+
+/* Begin drawing the application's objects into the reflection map of the next
+ * swell_ocean_draw (an ocean created with reflections = 1). view is the one that draw will
+ * take; desc (may be NULL: defaults) says where the objects are. swell binds its reflection target (its own framebuffer of about half the viewport's
+ * size, a power of two), sets the viewport, clears colour to 0 and depth to 1, and sets the
+ * front face to clockwise (the mirror turns every triangle's winding: culling keeps working).
+ * Draw the objects that stand above the water with the pass's matrices, writing their colour
+ * as you draw it to the screen (linear radiance with linear_output) and alpha 1; what is left
+ * at alpha 0 shows the sky. Leave depth testing as your objects need it. */
+typedef struct swell_reflection_desc {
+    float object_distance_m;    /* how far the objects stand from the camera, m: the sea
+                                 * nearer the camera moves and blurs their reflections with
+                                 * the waves by 1 - its distance / this of what an object at
+                                 * infinity's would (a wave's tilt meets a near object
+                                 * sooner), the sea at and beyond it not at all; 0 = far away
+                                 * (an island, a coast on the horizon) */
+} swell_reflection_desc;
+SWELL_API int swell_ocean_begin_reflection(swell_ocean *ocean, const swell_view *view,
+                                           const swell_reflection_desc *desc, swell_pass *out,
+                                           struct swell_err *err);
+/* End the pass: builds the map's mipmaps and restores the framebuffer binding, viewport,
+ * front face, clear colour, depth mask and scissor test found at begin (and the active unit
+ * and its binding). The next swell_ocean_draw reads the map (the water reflects the objects,
+ * blurred by the waves as eq. 27 blurs the sky, and they hide the sun's glitter they stand in
+ * front of); a draw with no pass before it reflects the sky alone. */
+SWELL_API int swell_ocean_end_reflection(swell_ocean *ocean, struct swell_err *err);
+
 /* Move the sun (re-bakes the sky map: not for every frame). */
 SWELL_API int swell_ocean_set_sun(swell_ocean *ocean, float elev_deg, float azim_deg,
                                   struct swell_err *err);

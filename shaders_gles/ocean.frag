@@ -1,6 +1,7 @@
 // ocean.frag - sea shading (Bruneton 2010 §4-5, Hu 2006 §5, Dupuy 2012 eq. 6-8).
 // validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0 | FS_PATTERNS=2 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 |
-// validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_NO_DETILE | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_NO_DETILE | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_LINEAR_OUT
+// validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_NO_DETILE | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_NO_DETILE | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_LINEAR_OUT |
+// validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT SWELL_LINEAR_OUT
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
@@ -47,6 +48,20 @@ uniform float sky_top_level;        // the sky map's last mip level
 uniform float sky_bias_max;         // the device's largest LOD bias (gpu.c)
 uniform vec3 sun_irr;               // sun irradiance at the sea, relative to E0 (x exposure)
 uniform vec3 sea_radiance;          // eq. 28's L_sea: water body lit by sun and sky (x exposure)
+#ifdef SWELL_REFLECT
+uniform sampler2D refl_tex;         // the application's objects mirrored in the sea plane, their
+                                    // colour premultiplied by coverage: an atlas of the map's
+                                    // levels (reflect.c)
+uniform mat3 refl_mat;              // a reflected ray (any length) -> the map's uv times w
+uniform vec4 refl_screen;           // gl_FragCoord -> the flat sea's map uv: scale xy, offset zw
+uniform vec4 refl_ray;              // gl_FragCoord -> the view ray in the eye frame, (x, y, -1)
+uniform vec4 refl_down;             // the eye frame's components of world -z; c / D_o
+uniform float refl_blur;            // log2 of eq. 27's footprint per unit sigma, in the map's
+                                    // texels (reflect.c)
+uniform vec3 refl_levels;           // the map's last level; 1 / its width, height
+uniform vec2 refl_up;               // the map's vertical (world z's image at its centre), a
+                                    // texel long, in uv
+#endif
 #ifdef QUALITY_HIGH
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
 uniform vec2 slope_var[4];          // per slot: the slope variance over its patch less the
@@ -321,6 +336,65 @@ vec3 sky_eq27(vec2 uv, float sigma)
     return sky;
 }
 
+#ifdef SWELL_REFLECT
+// Local reflections (Bruneton 2010 §6, Hu 2006 §5.2): the objects' reflection map read along
+// the pixel's reflected ray, filtered as eq. 27 filters the sky (reflect.c). The ray comes back
+// from its stereographic sky-map uv (common.glsl sky_map_uv inverted up to its length: with
+// d = 2 uv - 1, r ~ (2 d, 1 - d.d)), which already carries the pixel's slope. The map holds
+// display colours (the application's), premultiplied: they are taken back to radiance by
+// inverting tone_map, so a mirror (F = 1) would show an object as the application drew it.
+// Level l (a whole number) of the reflection map at uv: in the atlas (reflect.c), level 0 fills
+// the lower half, level l >= 1 is at x from 1 - 2^(1 - l) in the upper; uv kept half a texel
+// inside the level, so no level's filter reads its neighbour's.
+vec4 refl_level(vec2 uv, float l)
+{
+    float s = exp2(-l);
+    vec2 h = 0.5 * refl_levels.yz / s;
+    uv = clamp(uv, h, vec2(1.0) - h);
+    vec2 o = step(0.5, l) * vec2(1.0 - 2.0 * s, 0.5);
+    return texture2D(refl_tex, uv * vec2(s, 0.5 * s) + o);
+}
+
+vec4 reflect_local(vec2 sky_uv, float sigma)
+{
+    vec2 d = 2.0 * sky_uv - vec2(1.0);
+    vec3 q = refl_mat * vec3(2.0 * d, 1.0 - dot(d, d));
+    // Parallax (reflect.c): the objects stand D_o away; the flat sea here is D = c /
+    // sin(depression) away (the fragment's view ray). A ray the waves tilt by an angle meets
+    // them (D_o - D) further on, which the camera sees as that angle times k = 1 - D / D_o:
+    // the map position moves from the flat sea's (the pixel's own) by k of the whole, and the
+    // footprint shrinks by k. Beyond the objects, k = 0: the flat mirror, where no object is.
+    vec3 e = vec3(gl_FragCoord.xy * refl_ray.xy + refl_ray.zw, -1.0);
+    float sin_dep = dot(refl_down.xyz, e) * inversesqrt(dot(e, e));
+    float k = clamp(1.0 - refl_down.w / max(sin_dep, 1e-4), 0.0, 1.0);
+    vec2 flat_uv = gl_FragCoord.xy * refl_screen.xy + refl_screen.zw;
+    vec2 uv = flat_uv + k * (q.xy / max(q.z, 1e-3) - flat_uv);
+    // Eq. 27's ellipse: a slope turns the reflected ray in the plane of incidence by twice its
+    // angle, across it by sin(depression) times that; the footprint f_v (log2 of the map's
+    // texels) along the map's vertical (refl_up), sin(depression) of it across. Two taps at
+    // +-1/4 of it along the vertical, each a box half as tall, at the level of the wider of
+    // half the height and the width (so at most 2:1 of the ellipse's anisotropy is kept;
+    // a single isotropic fetch drew an object's reflection as a round blob on a calm sea),
+    // each between two whole levels of the atlas.
+    float fv = log2(max(sigma * k, 1e-4)) + refl_blur;
+    float f = clamp(max(fv - 1.0, fv + log2(max(sin_dep, 0.0625))), 0.0, refl_levels.x);
+    float l0 = floor(f), l1 = min(l0 + 1.0, refl_levels.x);
+    vec2 du = refl_up * (0.25 * exp2(fv));
+    vec4 c = mix(refl_level(uv + du, l0) + refl_level(uv - du, l0),
+                 refl_level(uv + du, l1) + refl_level(uv - du, l1), f - l0) * 0.5;
+    // nothing where the ray leaves the map (behind the camera or past its margin)
+    vec2 in_uv = step(vec2(0.0), uv) * step(uv, vec2(1.0));
+    c *= step(0.0, q.z) * in_uv.x * in_uv.y;
+#ifndef SWELL_LINEAR_OUT
+    vec3 y = c.rgb / max(c.a, 1e-3);
+    y *= y;
+    float m = min(max(max(y.r, y.g), y.b), 0.96);
+    c.rgb = y * (c.a / (1.0 - m));
+#endif
+    return c;
+}
+#endif
+
 void main()
 {
     g_ds = vec2(0.0);   // ds = s - s0: the patches' means are in s0 (ocean.vert)
@@ -390,9 +464,16 @@ void main()
     // its rows near the camera were 13.8 % darker than high's and those at the horizon 9 %
     // brighter (test_render test_quality_match, now on both LOD paths).
 #ifdef QUALITY_HIGH
-    vec3 sky = sky_eq27(uv.zw, sqrt(max(var.x, var.y))) * sky_map_scale;
+    float sigma = sqrt(max(var.x, var.y));
 #else
-    vec3 sky = sky_eq27(uv.zw, inversesqrt(2.0 * min(v_base.x, v_base.y))) * sky_map_scale;
+    float sigma = inversesqrt(2.0 * min(v_base.x, v_base.y));
+#endif
+    vec3 sky = sky_eq27(uv.zw, sigma) * sky_map_scale;
+#ifdef SWELL_REFLECT
+    // an object's reflection covers the sky's, and the sun's where it stands in front of it
+    vec4 obj = reflect_local(uv.zw, sigma);
+    sky = sky * (1.0 - obj.a) + obj.rgb;
+    sun *= 1.0 - obj.a;
 #endif
 
     // Refracted light, eq. 28.

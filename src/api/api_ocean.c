@@ -54,7 +54,7 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .geometry = d->geometry, .sun_elev_deg = d->sun_elev_deg,
         .sun_azim_deg = d->sun_azim_deg, .detile = d->detile,
         .texture_unit_first = d->texture_unit_first, .texture_unit_count = d->texture_unit_count,
-        .linear_output = d->linear_output,
+        .linear_output = d->linear_output, .reflections = d->reflections != 0,
     };
     struct gl_state st;
     o->unit0 = d->texture_unit_first;
@@ -112,10 +112,10 @@ static int view_camera(const swell_view *v, struct camera *c, struct swell_err *
     return SWELL_OK;
 }
 
-int swell_ocean_draw(swell_ocean *o, const swell_view *v, double t_s, struct swell_err *err)
+/* The renderer's view of the application's: its viewport, matrices and flags. */
+static int renderer_view_of(const swell_view *v, double t_s, struct renderer_view *out,
+                            struct swell_err *err)
 {
-    if (!o || !v)
-        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: ocean and view must not be NULL");
     if (v->viewport[2] <= 0 || v->viewport[3] <= 0 || !isfinite(t_s))
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: viewport %d x %d must not be "
                           "empty and t_s %g finite", v->viewport[2], v->viewport[3], t_s);
@@ -125,12 +125,64 @@ int swell_ocean_draw(swell_ocean *o, const swell_view *v, double t_s, struct swe
         .flags = ((v->flags & SWELL_DRAW_CLEAR) ? RENDERER_CLEAR : 0) |
                  ((v->flags & SWELL_DRAW_SKY) ? RENDERER_SKY : 0),
     };
-    int rc = view_camera(v, &rv.cam, err);
+    *out = rv;
+    return view_camera(v, &out->cam, err);
+}
+
+int swell_ocean_draw(swell_ocean *o, const swell_view *v, double t_s, struct swell_err *err)
+{
+    if (!o || !v)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: ocean and view must not be NULL");
+    struct renderer_view rv;
+    int rc = renderer_view_of(v, t_s, &rv, err);
     if (rc)
         return rc;
     struct gl_state st;
     save_state(o, &st);
     rc = renderer_draw(o->renderer, &rv, t_s, err);
+    gl_state_restore(&st);
+    return rc;
+}
+
+int swell_ocean_begin_reflection(swell_ocean *o, const swell_view *v,
+                                 const swell_reflection_desc *desc, swell_pass *out,
+                                 struct swell_err *err)
+{
+    if (!o || !v || !out)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_begin_reflection: ocean, view and out "
+                          "must not be NULL");
+    struct renderer_view rv;
+    int rc = renderer_view_of(v, 0.0, &rv, err);
+    if (rc)
+        return rc;
+    struct renderer_pass p;
+    struct renderer_reflection rd = { 0 };
+    if (desc)
+        rd.distance_m = desc->object_distance_m;
+    if ((rc = renderer_reflection_begin(o->renderer, &rv, &rd, &p, err)))
+        return rc;
+    memcpy(out->camera_pos, p.camera_pos, sizeof out->camera_pos);
+    memcpy(out->view, p.view, sizeof out->view);
+    memcpy(out->proj, p.proj, sizeof out->proj);
+    memcpy(out->viewport, p.viewport, sizeof out->viewport);
+    return SWELL_OK;
+}
+
+int swell_ocean_end_reflection(swell_ocean *o, struct swell_err *err)
+{
+    if (!o)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_end_reflection: ocean is NULL");
+    /* the atlas's copy changes the program, buffers, attributes, blend, depth, cull and
+     * scissor: restored as a draw restores them; the framebuffer, viewport, clear colour and
+     * depth mask are begin's (renderer_reflection_end) */
+    struct gl_state st;
+    save_state(o, &st);
+    int rc = renderer_reflection_end(o->renderer, err);
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &st.framebuffer);
+    glGetIntegerv(GL_VIEWPORT, st.viewport);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, st.clear_color);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &st.depth_mask);
+    st.scissor_test = glIsEnabled(GL_SCISSOR_TEST);
     gl_state_restore(&st);
     return rc;
 }

@@ -62,6 +62,9 @@ static void usage(FILE *f)
 "                    pattern repeats on its tile (2-3.5x the frame on llvmpipe) | off:\n"
 "                    read once, the tiles repeat | auto: on in high quality, off in\n"
 "                    low                                                         [auto]\n"
+"  --boat SPEED,HDG  a demo boat 30 m ahead of the camera, sailing at SPEED m/s\n"
+"                    (0..20) on course HDG deg (CCW from east), floating on the sea by\n"
+"                    its CPU query, reflected in it; B on KMS shows or hides it  [none]\n"
 "  --scale S         render scale: the frame drawn at S x the output's size and\n"
 "                    stretched over it, bilinear (0.25..1; S^2 of the pixels shaded:\n"
 "                    for GPUs too slow to shade every pixel, docs/devices.md)         [1]\n"
@@ -146,7 +149,8 @@ int options_parse(int argc, char **argv, struct options *o)
         "--platform", "--size", "--frames", "--fps", "--time", "--duration", "--out", "--tables",
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
         "--roll", "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode",
-        "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", NULL,
+        "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", "--boat",
+        NULL,
     };
     struct args args = { "swell", argc, argv, 1, flags, valued, 0, usage,
                          "swell " SWELL_VERSION_STRING };
@@ -209,6 +213,15 @@ int options_parse(int argc, char **argv, struct options *o)
                                "(degrees, above 0 up to 90)", s[0], v);
             o->sun_elev_deg = (float)s[0];
             o->sun_azim_deg = (float)s[1];
+        } else if (!strcmp(a, "--boat")) {
+            double s[2];
+            r = parse_doubles(a, v, 2, -360, 360, s, &err);
+            if (!r && (s[0] < 0 || s[0] > 20))
+                r = swell_fail(&err, SWELL_E_ARG, "--boat: speed %g m/s in '%s' is out of "
+                               "range (0 to 20)", s[0], v);
+            o->boat = 1;
+            o->boat_speed_mps = (float)s[0];
+            o->boat_heading_deg = (float)s[1];
         } else if (!strcmp(a, "--camera")) {
             r = parse_doubles(a, v, 3, -1e7, 1e7, o->camera.pos, &err);
             if (!r && (o->camera.pos[2] < 0.1 || o->camera.pos[2] > INPUT_ALT_MAX_M))

@@ -36,6 +36,8 @@ struct options {
     int warmup;                 /* --warmup: untimed bench frames; -1 = default */
     const char *results;        /* --results FILE.json */
     const char *scene;          /* --scene: label in the results */
+    int boat;                   /* --boat: the demo boat (app/boat.h) */
+    float boat_speed_mps, boat_heading_deg;
 };
 
 /* --out's text: -1 when not a file name or a pattern with one %d, else its %d count (0, 1). */

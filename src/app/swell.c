@@ -13,6 +13,7 @@
 
 #include "bake/bake.h"
 #include "app/bench.h"
+#include "app/boat.h"
 #include "app/options.h"
 #include "core/camera.h"
 #include "gl/gpu.h"
@@ -102,8 +103,37 @@ static void print_variant_shares(const struct renderer *r, int frame, const uint
 }
 
 /* Frame loop: everything it needs exists already; it allocates nothing but the PNG path. */
+/* The sun's direction, world (towards it). */
+static void sun_direction(float elev_deg, float azim_deg, float out[3])
+{
+    double e = elev_deg * M_PI / 180.0, a = azim_deg * M_PI / 180.0;
+    out[0] = (float)(cos(e) * cos(a));
+    out[1] = (float)(cos(e) * sin(a));
+    out[2] = (float)sin(e);
+}
+
+/* The demo boat in a frame (--boat): its pose on the sea at t, its reflection pass (before the
+ * sea: the renderer reads it), which the caller follows with the sea and then boat_draw. */
+static int boat_reflection(struct renderer *r, struct boat *b, const struct swell_tables *tables,
+                           const struct renderer_view *v, double t, const float sun_dir[3],
+                           struct swell_err *err)
+{
+    boat_pose_at(b, tables, renderer_detile(r), t);
+    const struct boat_pose *p = boat_pose(b);
+    double dx = p->pos[0] - v->cam.pos[0], dy = p->pos[1] - v->cam.pos[1];
+    struct renderer_reflection rr = { .distance_m = (float)sqrt(dx * dx + dy * dy) };
+    struct renderer_pass pass;
+    int rc = renderer_reflection_begin(r, v, &rr, &pass, err);
+    if (rc)
+        return rc;
+    glEnable(GL_DEPTH_TEST);
+    boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir);
+    return renderer_reflection_end(r, err);
+}
+
 static int run_frames(const struct options *o, struct platform_handle *ph, struct renderer *r,
-                      struct upscale *up, int is_kms, struct swell_err *err)
+                      struct upscale *up, int is_kms, const struct swell_tables *tables,
+                      struct boat *boat, struct swell_err *err)
 {
     int w = 0, h = 0;
     ph->be->size(ph->p, &w, &h);
@@ -155,7 +185,7 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
     struct camera live = o->camera;     /* moved by the keyboard when no --path is given */
     /* 0 means the renderer's default elevation (renderer.h) */
     float sun = o->sun_elev_deg > 0.0f ? o->sun_elev_deg : 30.0f;
-    int shots = 0;
+    int shots = 0, boat_shown = boat != NULL;
     int rc = SWELL_OK;
     for (int i = 0; frames == 0 || i < frames; i++) {
         double t = wall_clock ? o->time0_s + (now_s() - start) : o->time0_s + i * step;
@@ -181,14 +211,36 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
             printf("swell: preset %s requested: restart with --preset %s (tables are not "
                    "re-baked while running)\n", input_preset_name(keys.preset),
                    input_preset_name(keys.preset));
+        if (keys.boat && boat) {
+            boat_shown = !boat_shown;
+            printf("swell: boat %s\n", boat_shown ? "shown" : "hidden");
+        }
         struct camera cam = live;
         if (o->path > CAMERA_PATH_NONE)
             camera_path_at(o->path, t, &cam);
+        int fw = up ? up->w : w, fh = up ? up->h : h;
+        struct renderer_view view;
+        float sun_dir[3];
+        renderer_frame_view(r, &cam, fw, fh, &view);
+        sun_direction(sun, o->sun_azim_deg, sun_dir);
         rc = ph->be->begin_frame(ph->p, err);
         if (!rc && up)
             upscale_begin(up);
+        if (!rc && boat && boat_shown)
+            rc = boat_reflection(r, boat, tables, &view, t, sun_dir, err);
         if (!rc)
-            rc = renderer_frame(r, &cam, t, up ? up->w : w, up ? up->h : h, err);
+            rc = renderer_frame(r, &cam, t, fw, fh, err);
+        if (!rc && boat && boat_shown) {
+            struct camera_frame cf;
+            camera_frame_make(&view.cam, fw, fh, &cf);
+            boat_draw(boat, (const float *)cf.view_rel, (const float *)cf.proj, cam.pos, sun_dir);
+            if (o->verbose) {
+                const struct boat_pose *bp = boat_pose(boat);
+                printf("swell: frame %d: boat at (%.1f, %.1f), heave %.2f m, pitch %.1f deg, "
+                       "roll %.1f deg\n", i, bp->pos[0], bp->pos[1], bp->pos[2],
+                       (double)bp->pitch_deg, (double)bp->roll_deg);
+            }
+        }
         if (!rc && up)
             rc = upscale_end(up, err);
         if (!rc)
@@ -327,7 +379,7 @@ int main(int argc, char **argv)
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
         .debug_variants = o.debug_variants,
-        .detile = o.detile,
+        .detile = o.detile, .reflections = o.boat,
     };
     rc = renderer_open(&rd, &gpu, o.tier, budget, note_fallback, NULL, &r, &err);
     o.quality = rd.quality;
@@ -344,12 +396,30 @@ int main(int argc, char **argv)
             goto fail_renderer;
         up = &up_store;
     }
+    struct boat *boat = NULL;
+    if (o.boat) {
+        /* 30 m ahead of the first frame's camera */
+        struct camera c0 = o.camera;
+        if (o.path > CAMERA_PATH_NONE)
+            camera_path_at(o.path, o.time0_s, &c0);
+        double hd = c0.heading_deg * M_PI / 180.0;
+        struct boat_desc bd = {
+            .x0 = c0.pos[0] + 30.0 * cos(hd), .y0 = c0.pos[1] + 30.0 * sin(hd),
+            .t0_s = o.time0_s, .heading_deg = o.boat_heading_deg,
+            .speed_mps = o.boat_speed_mps,
+        };
+        if (boat_create(&bd, NULL, &gpu.caps, &boat, &err))
+            goto fail_upscale;
+    }
     print_start(&o, &ph, &gpu, &tables, r, up);
     if (o.bench ? run_bench(&o, &ph, &gpu, r, up, &err)
-                : run_frames(&o, &ph, r, up, ph.be == &platform_kms_backend, &err))
-        goto fail_upscale;
+                : run_frames(&o, &ph, r, up, ph.be == &platform_kms_backend, &tables, boat,
+                             &err))
+        goto fail_boat;
     status = 0;
 
+fail_boat:
+    boat_destroy(boat);
 fail_upscale:
     if (up)
         upscale_destroy(up);

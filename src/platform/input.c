@@ -23,7 +23,7 @@
 
 /* ---- bindings ---------------------------------------------------------------------------- */
 
-enum bind_kind { BIND_HOLD, BIND_QUIT, BIND_SCREENSHOT, BIND_PRESET };
+enum bind_kind { BIND_HOLD, BIND_QUIT, BIND_SCREENSHOT, BIND_PRESET, BIND_BOAT };
 
 struct binding {
     uint16_t code;      /* evdev KEY_* */
@@ -53,6 +53,7 @@ static const struct binding bindings[] = {
     { KEY_4,         BIND_PRESET,     INPUT_PRESET_STORM,    0 },
     { KEY_F12,       BIND_SCREENSHOT, 0, 0 },
     { KEY_P,         BIND_SCREENSHOT, 0, 0 },
+    { KEY_B,         BIND_BOAT,       0, 0 },
 };
 
 /* The names of the shipped presets in tables/ (tables/<name>.preset). */
@@ -69,6 +70,7 @@ void input_state_init(struct input_state *st)
 void input_clear_edges(struct input_state *st)
 {
     st->screenshot = 0;
+    st->boat = 0;
     st->preset = INPUT_PRESET_NONE;
 }
 
@@ -99,6 +101,10 @@ void input_apply_key(struct input_state *st, uint32_t linux_keycode, int pressed
         case BIND_PRESET:
             if (pressed)
                 st->preset = b->arg;
+            break;
+        case BIND_BOAT:
+            if (pressed)
+                st->boat = 1;
             break;
         default:
             break;

@@ -17,6 +17,7 @@
  *   sun elevation + / -     ]  /  [                (held)
  *   wind preset             1 calm, 2 moderate, 3 rough, 4 storm   (one-shot)
  *   screenshot              F12, P                 (one-shot)
+ *   demo boat on / off      B                      (one-shot; swell --boat)
  * libinput sends no autorepeat, so held actions are booleans integrated over frame time.
  *
  * Camera conventions are camera.h's: x east, y north, z up, metres; heading CCW from +x;
@@ -77,6 +78,7 @@ struct input_state {
     uint8_t held[INPUT_HOLD_COUNT];
     int quit;           /* sticky: Esc or Q was pressed */
     int screenshot;     /* one-shot: F12 or P pressed since the last input_clear_edges() */
+    int boat;           /* one-shot: B pressed since then (the demo boat shown or hidden) */
     int preset;         /* one-shot: enum input_preset chosen since then (last wins), or NONE */
 };
 

@@ -47,7 +47,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
         pat[i][2] = 1.0f / pi->size_m;
         pat[i][3] = grid_band_wavelength(pi);
         for (int f = 0; f < 2; f++)
-            bind_tex(r, UNIT_PATTERNS + r->nfs + r->nwc + 2 * i + f,
+            bind_tex(r, unit_patterns(r) + r->nfs + r->nwc + 2 * i + f,
               r->disp_tex[i][r->disp_ab[i][f]], u[VU_A0 + 2 * i + f]);
         float sh[3];
         detile_camera_shift(i, cam->pos[0], cam->pos[1], 1.0 / pi->size_m, sh);
@@ -56,7 +56,7 @@ static void set_vtf_uniforms(struct renderer *r, int variant, const struct camer
     }
     /* the atlas's hash on the unit after the displacement's (choose_vtf counts it) */
     if (renderer_detile(r))
-        bind_tex(r, UNIT_PATTERNS + r->nfs + r->nwc + 2 * r->t->patterns,
+        bind_tex(r, unit_patterns(r) + r->nfs + r->nwc + 2 * r->t->patterns,
           r->fresnel_tex, u[VU_DETILE_TEX]);
     float atlas[4];
     atlas_hash_frame(r, atlas);
@@ -183,7 +183,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         memcpy(sb[s], sl->slope->bias, sizeof(sb[s]));
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
-        bind_tex(r, UNIT_PATTERNS + s, chain_at(&sl->slope_tex, 0), u[OU_SLOPE_TEX0 + s]);
+        bind_tex(r, unit_patterns(r) + s, chain_at(&sl->slope_tex, 0), u[OU_SLOPE_TEX0 + s]);
         if (r->d.quality == QUALITY_HIGH) {
             /* the fetched patch's variance T (and below its foam memory's mean and variance)
              * in the constants: ocean.frag's slot adds only what depends on its taps */
@@ -191,7 +191,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
             cs[3] += sl->top_slope[3];
         }
         if (s < kw) {   /* kw <= nwc: whitecap textures exist for these (create_textures) */
-            bind_tex(r, UNIT_PATTERNS + r->nfs + s, chain_at(&sl->wc_tex, 0), u[OU_WC_TEX0 + s]);
+            bind_tex(r, unit_patterns(r) + r->nfs + s, chain_at(&sl->wc_tex, 0), u[OU_WC_TEX0 + s]);
             if (r->d.quality == QUALITY_HIGH) {
                 ck[0] += sl->top_k[0];
                 ck[1] += sl->top_k[1];
@@ -246,6 +246,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
      * their patches' means (ocean.frag) */
     glUniform3fv(u[OU_LIN_S0], 1, r->vf.lin_s0);
     glUniform2fv(u[OU_TOTAL_VAR], 1, r->vf.total_var);
+    reflect_uniforms(r, u);
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
@@ -321,17 +322,45 @@ static void draw_runs(struct renderer *r, const struct camera_frame *view)
     }
 }
 
+/* The frame of view v from camera cam (v's, or the one the renderer draws from): the
+ * application's matrices, exactly, where it gave them, so it can depth-test against the sea. */
+void renderer_view_frame(const struct renderer_view *v, const struct camera *cam,
+                         struct camera_frame *view)
+{
+    camera_frame_make(cam, v->width, v->height, view);
+    view->x = v->x;
+    view->y = v->y;
+    if (v->view) {
+        memcpy(view->view_rel, v->view, sizeof view->view_rel);
+        view->view_rel[3][0] = view->view_rel[3][1] = view->view_rel[3][2] = 0.0f;
+    }
+    if (v->proj) {
+        memcpy(view->proj, v->proj, sizeof view->proj);
+        view->aspect = view->proj[1][1] / view->proj[0][0];
+    }
+    if (v->view || v->proj)
+        glm_mat4_mul(view->proj, view->view_rel, view->world_to_clip);
+}
+
+void renderer_frame_view(const struct renderer *r, const struct camera *cam, int width,
+                         int height, struct renderer_view *out)
+{
+    memset(out, 0, sizeof *out);
+    out->cam = *cam;
+    out->width = width;
+    out->height = height;
+    out->flags = RENDERER_CLEAR | (r->d.no_sky ? 0 : RENDERER_SKY);
+    /* the program's own projection: no wider than the grid covers (an embedding application
+     * brings its own, renderer_draw) */
+    out->cam.fov_y_deg = camera_fov_covered(cam->fov_y_deg,
+                                            height > 0 ? (float)width / (float)height : 1.0f);
+}
+
 int renderer_frame(struct renderer *r, const struct camera *user_cam, double t_s, int width,
                    int height, struct swell_err *err)
 {
-    struct renderer_view v = {
-        .cam = *user_cam, .width = width, .height = height,
-        .flags = RENDERER_CLEAR | (r->d.no_sky ? 0 : RENDERER_SKY),
-    };
-    /* the program's own projection: no wider than the grid covers (an embedding application
-     * brings its own, renderer_draw) */
-    v.cam.fov_y_deg = camera_fov_covered(user_cam->fov_y_deg,
-                                         height > 0 ? (float)width / (float)height : 1.0f);
+    struct renderer_view v;
+    renderer_frame_view(r, user_cam, width, height, &v);
     return renderer_draw(r, &v, t_s, err);
 }
 
@@ -359,20 +388,7 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
     size_t vbytes = sizeof(float) * (r->cpu_vterms ? VSHADE_FLOATS : GRID_FLOATS) *
                     (size_t)grid_vertex_count(r->grid);
     struct camera_frame view;
-    camera_frame_make(cam, width, height, &view);
-    view.x = v->x;
-    view.y = v->y;
-    /* the application's matrices, exactly, so it can depth-test against the sea */
-    if (v->view) {
-        memcpy(view.view_rel, v->view, sizeof view.view_rel);
-        view.view_rel[3][0] = view.view_rel[3][1] = view.view_rel[3][2] = 0.0f;
-    }
-    if (v->proj) {
-        memcpy(view.proj, v->proj, sizeof view.proj);
-        view.aspect = view.proj[1][1] / view.proj[0][0];
-    }
-    if (v->view || v->proj)
-        glm_mat4_mul(view.proj, view.view_rel, view.world_to_clip);
+    renderer_view_frame(v, cam, &view);
     stream_textures(r, t_s);
     vertex_frame(r, &view);   /* after the slots' constants of this loop phase */
     if (r->vtf) {
@@ -446,6 +462,7 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
             glBlendFunc(GL_ZERO, GL_CONSTANT_COLOR);
         }
         draw_runs(r, &view);
+        r->refl_ready = 0;   /* a pass serves the draw after it */
         glDisable(GL_BLEND);
         for (int a = 0; a < A_COUNT; a++)
             glDisableVertexAttribArray((GLuint)a);

@@ -32,7 +32,9 @@ enum ocean_uniform {
     OU_SKY_BIAS_MAX, OU_HAZE_TAU, OU_HAZE_RAY, OU_HAZE_MIE, OU_HAZE_FRAME,
     OU_HAZE_TAU_RATIO, OU_DETILE_SHIFT, OU_DETILE_ATLAS, OU_WC_MEAN, OU_FRESNEL_V, OU_SLOPE_MEAN,
     OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
-    OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_COUNT
+    OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_REFL_TEX, OU_REFL_MAT,
+    OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
+    OU_REFL_LEVELS, OU_REFL_UP, OU_COUNT
 };
 
 enum sky_uniform {
@@ -104,8 +106,10 @@ enum vtf_uniform {
     VU_DETILE_ATLAS, VU_DISP_CELL, VU_COUNT
 };
 
-/* Texture units: 0 Fresnel, 1 sky, then slope/whitecap per fragment pattern slot. */
-enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_PATTERNS = 2 };
+/* Texture units: 0 Fresnel, 1 sky, 2 the reflection map where renderer_desc reflections asks
+ * for one (reflect.c), then slope/whitecap per fragment pattern slot (unit_patterns). */
+enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_REFLECT = 2 };
+#define UNIT_PATTERNS_OF(reflections) (2 + ((reflections) != 0))
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
 #define VAR_KNOTS 4                   /* low quality's pixel variance per run (pixel_var_at) */
@@ -210,7 +214,31 @@ struct renderer {
     int refused;                      /* variants the probe found refused */
     int detile_refused;               /* > 0: --detile auto turned the lattice off, with which
                                        * the probe found this many refused (renderer_create) */
+    /* Local reflections (reflect.c, renderer_desc reflections) */
+    GLuint refl_fbo, refl_tex, refl_depth;  /* the target the application draws into */
+    GLuint refl_none;                 /* 1x1 transparent: a draw with no pass before it */
+    GLuint refl_atlas, refl_atlas_fbo;  /* the map's levels side by side, no mips (w x 2h) */
+    struct shader_program refl_copy;  /* upscale.vert/.frag: the atlas's copy */
+    GLint refl_copy_tex;
+    int refl_w, refl_h, refl_levels;
+    int refl_active;                  /* between renderer_reflection_begin and _end */
+    int refl_ready;                   /* a pass ended since the last draw */
+    float refl_mat[9];                /* reflected ray -> map uv times w (ocean.frag) */
+    float refl_screen[4];             /* gl_FragCoord -> the flat sea's map uv */
+    float refl_ray[4];                /* gl_FragCoord -> the eye-frame view ray */
+    float refl_down[4];               /* world -z in the eye frame; camera height / distance */
+    float refl_blur;                  /* eq. 27's footprint per unit sigma, log2 texels */
+    float refl_up[2];                 /* the map's vertical, a texel long in uv */
+    GLint refl_prev_fbo, refl_prev_viewport[4], refl_prev_front, refl_prev_active;
+    GLfloat refl_prev_clear[4];
+    GLboolean refl_prev_depth_mask, refl_prev_scissor;
 };
+
+/* The first unit of the pattern slots' tables. */
+static inline int unit_patterns(const struct renderer *r)
+{
+    return UNIT_PATTERNS_OF(r->d.reflections);
+}
 
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
  * hardware would take at the row, so a run is a span of rows where no table's level changes.
@@ -262,6 +290,15 @@ int sky_atlas_at(int size, int l, int *x, int *y);
 int create_sky_mesh(struct renderer *r, struct swell_err *err);
 void update_sky_constants(struct renderer *r);
 int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err *err);
+
+/* reflect.c */
+int reflect_create(struct renderer *r, struct swell_err *err);
+void reflect_destroy(struct renderer *r);
+void reflect_uniforms(const struct renderer *r, const GLint *u);
+
+/* frame.c */
+void renderer_view_frame(const struct renderer_view *v, const struct camera *cam,
+                         struct camera_frame *view);
 
 /* lod.c */
 float row_footprint(float d2, float alt, float pix_angle);

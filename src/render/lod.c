@@ -133,9 +133,9 @@ void set_run_lods(struct renderer *r, int k, int kw, uint32_t key, float d2_far,
     glUniform4fv(u[OU_SKY_RUN_BLK], 2, &blk[0][0]);
     /* no LOD in the shader: each table's level is the texture bound (chain_tex) */
     for (int s = 0; s < k && s < SWELL_MAX_PATTERNS; s++) {
-        bind_tex(r, UNIT_PATTERNS + s, chain_at(&r->slot[s].slope_tex, sl[s]), -1);
+        bind_tex(r, unit_patterns(r) + s, chain_at(&r->slot[s].slope_tex, sl[s]), -1);
         if (s < kw)
-            bind_tex(r, UNIT_PATTERNS + r->nfs + s, chain_at(&r->slot[s].wc_tex, wl[s]), -1);
+            bind_tex(r, unit_patterns(r) + r->nfs + s, chain_at(&r->slot[s].wc_tex, wl[s]), -1);
     }
 }
 

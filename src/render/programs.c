@@ -20,7 +20,9 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "sky_top_level", "sky_bias_max", "haze_tau", "haze_ray", "haze_mie", "haze_frame",
     "haze_tau_ratio", "detile_shift", "detile_atlas", "wc_mean", "fresnel_uv_scale",
     "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "var_knot_v",
-    "var_knot_frame_v", "sky_run_lod", "sky_run_blk", "wc_trust", "foam_detail"
+    "var_knot_frame_v", "sky_run_lod", "sky_run_blk", "wc_trust", "foam_detail", "refl_tex", "refl_mat",
+    "refl_screen", "refl_ray", "refl_down", "refl_blur", "refl_levels",
+    "refl_up"
 };
 static const char *const sky_uniform_names[SU_COUNT] = {
     "clip_to_world_rel", "sky_view", "sky_view_scale", "sky_sun", "sun_ndc", "sun_display"
@@ -79,7 +81,7 @@ void renderer_program_name(const struct renderer *r, int v, char *buf, size_t si
 
 int build_programs(struct renderer *r, struct swell_err *err)
 {
-    char defines[128];
+    char defines[192];
     struct shader_desc od = { 0 }, sd = { 0 };
     int rc;
     od.dir = sd.dir = r->d.shader_dir;
@@ -93,11 +95,12 @@ int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = (int)(sizeof(ocean_attribs) / sizeof(ocean_attribs[0]));
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s",
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s",
                              k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
                              r->run_lod ? " SWELL_RUN_LOD" : "",
                              renderer_detile(r) ? "" : " SWELL_NO_DETILE",
-                             r->d.linear_output ? " SWELL_LINEAR_OUT" : "");
+                             r->d.linear_output ? " SWELL_LINEAR_OUT" : "",
+                             r->d.reflections ? " SWELL_REFLECT" : "");
             int v = VARIANT(k, kw);
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",

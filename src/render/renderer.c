@@ -73,6 +73,7 @@ void renderer_destroy(struct renderer *r)
     gpu_texture_destroy(r->gpu, &r->sky_view_tex);
     chain_destroy(r, &r->sky_tex);
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
+    reflect_destroy(r);
     free(r->scratch);
     shader_program_destroy(&r->sunp);
     shader_program_destroy(&r->skyp);
@@ -142,12 +143,13 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     GLint combined = 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     int first = desc->texture_unit_first, count = desc->texture_unit_count;
-    if (first < 0 || count < 0 || (count > 0 && count < UNIT_PATTERNS + 1) ||
-        first + (count > 0 ? count : UNIT_PATTERNS + 1) > combined)
+    int least = UNIT_PATTERNS_OF(desc->reflections) + 1;
+    if (first < 0 || count < 0 || (count > 0 && count < least) ||
+        first + (count > 0 ? count : least) > combined)
         return swell_fail(err, SWELL_E_ARG, "renderer: texture units %d..%d: the device has "
                           "%d (0..%d), and the sea needs %d at least", first,
-                          first + (count > 0 ? count : UNIT_PATTERNS + 1) - 1, (int)combined,
-                          (int)combined - 1, UNIT_PATTERNS + 1);
+                          first + (count > 0 ? count : least) - 1, (int)combined,
+                          (int)combined - 1, least);
     glActiveTexture(GL_TEXTURE0 + (GLenum)first);   /* uploads: on the renderer's units */
     if (!(r = calloc(1, sizeof(*r))))
         return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory");
@@ -170,6 +172,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     gd.k_patterns = r->k_mask;
     gd.no_detile = !renderer_detile(r);
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
+        (rc = reflect_create(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
         (rc = probe_programs(r, err)))
         goto fail;

@@ -71,6 +71,9 @@ struct renderer_desc {
     int texture_unit_count;             /* how many from there it may bind; default 0 = as
                                          * many as the device has (fewer: fewer patterns in
                                          * the fragment shader, the rest per vertex) */
+    int reflections;                    /* 1: local reflections of the application's objects
+                                         * (reflect.c): a texture unit and a reflection target
+                                         * (renderer_reflection_begin); default 0: the sky alone */
     int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
                                          * naming the ocean program it is drawn with, no sky
                                          * (white): the screen's share of each program
@@ -140,6 +143,35 @@ struct renderer_view {
 };
 int  renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
                    struct swell_err *err);
+/* The view renderer_frame draws cam with, at width x height (its field of view narrowed to
+ * what the grid covers): a program drawing its own objects with the sea takes it for their
+ * matrices (camera_frame_make of out->cam) and its reflection pass. */
+void renderer_frame_view(const struct renderer *r, const struct camera *cam, int width,
+                         int height, struct renderer_view *out);
+/* Local reflections (renderer_desc reflections; Hu 2006 §2.2, Bruneton 2010 §6): begin binds
+ * the reflection target (its viewport, colour and depth cleared, front faces clockwise: the
+ * mirror turns the winding) and gives the view the application draws its objects above the
+ * sea with: the camera mirrored in the sea plane z = 0 and its view (world-to-eye rotation,
+ * a reflection), and the projection widened a little, its near plane the sea plane, so what is
+ * under the water is cut. Objects write their display colour (their linear radiance with
+ * linear_output) and alpha 1. end builds the map's mipmaps and restores the framebuffer,
+ * viewport, front face, clear colour, depth mask and scissor test begin found; the next draw
+ * reads the map, later ones only after another pass. */
+struct renderer_pass {
+    double camera_pos[3];               /* the mirrored eye, m */
+    float view[16];                     /* world-to-eye, column-major, translation 0 */
+    float proj[16];                     /* eye-to-clip, column-major */
+    int viewport[4];                    /* the target's: 0, 0, width, height */
+};
+struct renderer_reflection {
+    float distance_m;                   /* the objects' distance from the camera, m: how far
+                                         * their reflections move with the waves (parallax,
+                                         * ocean.frag); 0 = far away */
+};
+int  renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
+                               const struct renderer_reflection *d, struct renderer_pass *out,
+                               struct swell_err *err);
+int  renderer_reflection_end(struct renderer *r, struct swell_err *err);
 /* Move the sun (degrees above the horizon in (0, 90], azimuth CCW from +x): re-bakes the sky
  * map (about 11 M instructions at 256^2) and the automatic exposure; not for every frame. */
 int  renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err);

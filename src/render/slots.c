@@ -51,7 +51,7 @@ void assign_patterns(struct renderer *r)
         for (int s = 0; high && s < fs; s++)
             if (breaks[n - fs + s])
                 nwc = s + 1;
-        if (UNIT_PATTERNS + fs + nwc <= units)
+        if (unit_patterns(r) + fs + nwc <= units)
             break;
     }
     if (fs == 0)
@@ -181,7 +181,7 @@ int choose_vtf(const struct renderer *r)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     /* a unit per loop frame of every pattern and one for the lattice hash (detile.h) */
-    int need = UNIT_PATTERNS + r->nfs + r->nwc + 2 * n + hash;
+    int need = unit_patterns(r) + r->nfs + r->nwc + 2 * n + hash;
     if (combined < r->d.texture_unit_first + need ||
         (r->d.texture_unit_count > 0 && r->d.texture_unit_count < need))
         return 0;

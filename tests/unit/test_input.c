@@ -62,7 +62,7 @@ static int is_bound(uint32_t key)
     for (size_t i = 0; i < 4; i++)
         if (preset_keys[i].key == key)
             return 1;
-    return 0;
+    return key == KEY_B;   /* the demo boat */
 }
 
 static int any_held(const struct input_state *st)
@@ -78,6 +78,7 @@ static void assert_idle(const struct input_state *st)
     assert_false(any_held(st));
     assert_int_equal(st->quit, 0);
     assert_int_equal(st->screenshot, 0);
+    assert_int_equal(st->boat, 0);
     assert_int_equal(st->preset, INPUT_PRESET_NONE);
 }
 
@@ -138,6 +139,16 @@ static void test_one_shots(void **unused)
         input_apply_key(&st, shot_keys[i], 2);  /* autorepeat: no second screenshot */
         assert_int_equal(st.screenshot, 0);
     }
+    /* B shows or hides the demo boat, once per press */
+    input_state_init(&st);
+    input_apply_key(&st, KEY_B, 1);
+    assert_int_equal(st.boat, 1);
+    input_apply_key(&st, KEY_B, 0);
+    assert_int_equal(st.boat, 1);
+    input_clear_edges(&st);
+    assert_idle(&st);
+    input_apply_key(&st, KEY_B, 2);
+    assert_int_equal(st.boat, 0);
     for (size_t i = 0; i < 4; i++) {
         input_state_init(&st);
         input_apply_key(&st, preset_keys[i].key, 1);

@@ -1,0 +1,345 @@
+/* reflect.c - local reflections of the application's objects (issue 18; Hu et al. 2006 §2.2,
+ * §5.2; Bruneton et al. 2010 §6): the reflection target the application draws its objects into,
+ * mirrored in the mean sea plane, and what ocean.frag needs to read it.
+ *
+ * Hu renders the objects above the water mirrored into a screen-space texture and reads it by
+ * projective texture mapping, the coordinates shifted by an ad-hoc scale of the bump. Bruneton
+ * §6 filters the same map with the sky's fast environment lighting (eq. 27) through a mapping U
+ * from microfacet slopes to map coordinates. This is that mapping: ocean.frag has the reflected
+ * ray of its slope already, as the sky map's stereographic uv (common.glsl sky_map_uv); the ray
+ * mirrored in the sea plane is a direction the camera sees, and the pass's projection takes it
+ * to the map (refl_mat). On a flat sea that direction is the pixel's own view ray, so the
+ * reflection lies exactly under its object; on waves it moves with the slope as a reflection
+ * of something far away does, times the parallax factor of the objects' distance (ocean.frag).
+ * The filter is eq. 27's: a footprint of 2 sigma du/dzeta. gles2-min has no explicit LOD, and
+ * the implicit one follows the waves' detail from pixel to pixel (a reflected ray's map
+ * position jumps with the slope): read by it, the map's coarse levels smeared an object's
+ * colour over the whole sea. So the map's levels are copied into an atlas without mips
+ * (reflect_atlas, as sky_run reads the sky on software rasterisers), and ocean.frag blends the
+ * two levels around the footprint there, each fetched bilinearly at its own level.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "render/internal.h"
+
+/* The map: the viewport's size halved, as a power of two (GLES 2 mipmaps), within these. */
+#define REFLECT_MIN 32
+#define REFLECT_MAX 512
+/* The pass's field of view is the view's widened by this factor (tan of the half angles), so
+ * a ray the waves tilt past the screen's edge still finds its object. */
+#define REFLECT_MARGIN 1.25f
+
+static int pot_floor(int n)
+{
+    int p = 1;
+    while (2 * p <= n)
+        p *= 2;
+    return p;
+}
+
+/* The target's colour with its mips (4/3), its 16-bit depth and the atlas of its levels
+ * (w x 2h). */
+static uint64_t target_bytes(int w, int h)
+{
+    uint64_t n = (uint64_t)w * (uint64_t)h;
+    return n * 16u / 3u + n * 2u + n * 8u;
+}
+
+static void release_target(struct renderer *r)
+{
+    if (r->refl_w)
+        r->gpu_bytes -= target_bytes(r->refl_w, r->refl_h);
+    if (r->refl_atlas_fbo)
+        glDeleteFramebuffers(1, &r->refl_atlas_fbo);
+    r->refl_atlas_fbo = 0;
+    gpu_texture_destroy(r->gpu, &r->refl_atlas);
+    if (r->refl_fbo)
+        glDeleteFramebuffers(1, &r->refl_fbo);
+    if (r->refl_depth) {
+        glDeleteRenderbuffers(1, &r->refl_depth);
+        gpu_release(r->gpu, (uint64_t)r->refl_w * (uint64_t)r->refl_h * 2u);
+    }
+    gpu_texture_destroy(r->gpu, &r->refl_tex);
+    r->refl_fbo = r->refl_depth = 0;
+    r->refl_w = r->refl_h = 0;
+}
+
+void reflect_destroy(struct renderer *r)
+{
+    release_target(r);
+    gpu_texture_destroy(r->gpu, &r->refl_none);
+    shader_program_destroy(&r->refl_copy);
+}
+
+/* The 1x1 transparent map a draw reads when no pass was drawn for it. */
+int reflect_create(struct renderer *r, struct swell_err *err)
+{
+    static const uint8_t clear[4] = { 0, 0, 0, 0 };
+    static const char *const names[1] = { "frame_tex" };
+    static const struct shader_attrib attribs[1] = { { "a_ndc", 0 } };
+    if (!r->d.reflections)
+        return 0;
+    /* the atlas's copy: upscale.vert/.frag, a bilinear fetch over the viewport */
+    struct shader_desc sd = {
+        .dir = r->d.shader_dir, .vs_file = "upscale.vert", .fs_file = "upscale.frag",
+        .caps = &r->gpu->caps, .uniform_names = names, .uniform_count = 1,
+        .uniform_locations = &r->refl_copy_tex, .attribs = attribs, .attrib_count = 1,
+    };
+    int rc = shader_program_build(&sd, &r->refl_copy, err);
+    if (rc)
+        return rc;
+    rc = gpu_texture_create(r->gpu, 1, 1, 1, FORMAT_RGBA8, 0, "reflection (none)",
+                            &r->refl_none, err);
+    if (rc)
+        return rc;
+    return upload_single(r->refl_none, 1, 1, clear, "reflection (none)", err);
+}
+
+static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *err)
+{
+    int w = pot_floor(vw / 2), h = pot_floor(vh / 2);
+    w = w < REFLECT_MIN ? REFLECT_MIN : w > REFLECT_MAX ? REFLECT_MAX : w;
+    h = h < REFLECT_MIN ? REFLECT_MIN : h > REFLECT_MAX ? REFLECT_MAX : h;
+    if (r->refl_fbo && w == r->refl_w && h == r->refl_h)
+        return 0;
+    release_target(r);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
+    int levels = 1;
+    while ((w >> levels) || (h >> levels))
+        levels++;
+    int rc = gpu_texture_create(r->gpu, w, h, levels, FORMAT_RGBA8, 0, "reflection map",
+                                &r->refl_tex, err);
+    if (!rc)
+        rc = gpu_texture_create(r->gpu, w, 2 * h, 1, FORMAT_RGBA8, 0, "reflection atlas",
+                                &r->refl_atlas, err);
+    if (rc) {
+        gpu_texture_destroy(r->gpu, &r->refl_tex);
+        return rc;
+    }
+    uint64_t depth_bytes = (uint64_t)w * (uint64_t)h * 2u;
+    if ((rc = gpu_account(r->gpu, depth_bytes, "reflection depth", err))) {
+        gpu_texture_destroy(r->gpu, &r->refl_atlas);
+        gpu_texture_destroy(r->gpu, &r->refl_tex);
+        return rc;
+    }
+    r->refl_w = w;
+    r->refl_h = h;
+    r->refl_levels = levels;
+    r->gpu_bytes += target_bytes(w, h);
+    glGenRenderbuffers(1, &r->refl_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, r->refl_depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
+    glGenFramebuffers(1, &r->refl_atlas_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->refl_atlas_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->refl_atlas,
+                           0);
+    GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st == GL_FRAMEBUFFER_COMPLETE) {
+        glGenFramebuffers(1, &r->refl_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, r->refl_fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->refl_tex,
+                               0);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                  r->refl_depth);
+        st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    }
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->refl_prev_fbo);
+        release_target(r);
+        return swell_fail(err, SWELL_E_GL, "renderer: the reflection target %dx%d (RGBA8, 16-bit "
+                          "depth) is not complete on this device (status 0x%x)", w, h, st);
+    }
+    return gpu_check("renderer: reflection target", err);
+}
+
+/* Lengyel's oblique near plane: proj (column-major) made to clip at the eye-space plane c
+ * (points with c . (x, y, z, 1) < 0 cut), the camera on that side (c[3] < 0). */
+static void oblique_near(float p[16], const double c[4])
+{
+    double q[4] = { ((c[0] > 0.0) - (c[0] < 0.0) + p[8]) / p[0],
+                    ((c[1] > 0.0) - (c[1] < 0.0) + p[9]) / p[5], -1.0,
+                    (1.0 + p[10]) / p[14] };
+    double dq = c[0] * q[0] + c[1] * q[1] + c[2] * q[2] + c[3] * q[3];
+    double s = 2.0 / dq;
+    p[2] = (float)(c[0] * s);
+    p[6] = (float)(c[1] * s);
+    p[10] = (float)(c[2] * s + 1.0);
+    p[14] = (float)(c[3] * s);
+}
+
+int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
+                              const struct renderer_reflection *d, struct renderer_pass *out,
+                              struct swell_err *err)
+{
+    if (!r->d.reflections)
+        return swell_fail(err, SWELL_E_ARG, "renderer: no reflection target: create the ocean "
+                          "with reflections = 1");
+    if (r->refl_active)
+        return swell_fail(err, SWELL_E_ARG, "renderer: a reflection pass is open already: end "
+                          "it first");
+    if (d && (!(d->distance_m >= 0.0f) || !isfinite(d->distance_m)))
+        return swell_fail(err, SWELL_E_ARG, "renderer: the reflected objects' distance %g m "
+                          "must be finite and >= 0 (0: far away)", (double)d->distance_m);
+    struct camera_frame view;
+    renderer_view_frame(v, &v->cam, &view);
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &r->refl_prev_fbo);
+    glGetIntegerv(GL_VIEWPORT, r->refl_prev_viewport);
+    glGetIntegerv(GL_FRONT_FACE, &r->refl_prev_front);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, r->refl_prev_clear);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &r->refl_prev_depth_mask);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &r->refl_prev_active);
+    r->refl_prev_scissor = glIsEnabled(GL_SCISSOR_TEST);
+    int rc = ensure_target(r, v->width, v->height, err);
+    if (rc)
+        return rc;
+
+    /* the view mirrored: eye = V S (p - S c) = V (S p - c), S = diag(1, 1, -1) */
+    memset(out, 0, sizeof *out);
+    const float *vr = &view.view_rel[0][0], *pr = &view.proj[0][0];
+    memcpy(out->view, vr, sizeof out->view);
+    for (int k = 0; k < 3; k++)
+        out->view[8 + k] = -vr[8 + k];
+    out->view[12] = out->view[13] = out->view[14] = 0.0f;
+    out->camera_pos[0] = v->cam.pos[0];
+    out->camera_pos[1] = v->cam.pos[1];
+    out->camera_pos[2] = -v->cam.pos[2];
+    memcpy(out->proj, pr, sizeof out->proj);
+    out->proj[0] /= REFLECT_MARGIN;
+    out->proj[5] /= REFLECT_MARGIN;
+    double cz = v->cam.pos[2] > 0.01 ? v->cam.pos[2] : 0.01;
+    /* what lies below the sea plane is not reflected: in the mirrored scene, what is above it,
+     * z' > 0, i.e. with q the mirrored point less the camera, -(q_z + c_z) >= 0 kept. In the
+     * eye frame the plane's normal is V (0, 0, -1). */
+    double plane[4] = { -vr[8], -vr[9], -vr[10], -cz };
+    oblique_near(out->proj, plane);
+    out->viewport[2] = r->refl_w;
+    out->viewport[3] = r->refl_h;
+
+    /* ocean.frag: the reflected ray r, mirrored (S r), in the eye frame (V), to the map's uv
+     * times w: u w = (P00 / m e_x - e_z) / 2, v w = (P11 / m e_y - e_z) / 2, w = -e_z */
+    for (int k = 0; k < 3; k++) {
+        float s = k == 2 ? -1.0f : 1.0f;
+        float ex = vr[4 * k + 0] * s, ey = vr[4 * k + 1] * s, ez = vr[4 * k + 2] * s;
+        r->refl_mat[3 * k + 0] = 0.5f * (out->proj[0] * ex - ez);
+        r->refl_mat[3 * k + 1] = 0.5f * (out->proj[5] * ey - ez);
+        r->refl_mat[3 * k + 2] = -ez;
+    }
+    /* eq. 27's footprint 2 sigma du/dzeta: a slope deviation sigma turns the reflected ray by
+     * 2 sigma, and the footprint spans twice that, 4 sigma rad; a radian is P11 h / 2 of the
+     * map's texels at its centre (P11 the pass's, h the map's): the level is log2(2 P11 h) +
+     * log2(sigma) */
+    float blur = log2f(2.0f * out->proj[5] * (float)r->refl_h);
+    /* gl_FragCoord to the flat sea's map uv, 0.5 + ndc / (2 m) */
+    r->refl_screen[0] = 1.0f / ((float)v->width * REFLECT_MARGIN);
+    r->refl_screen[1] = 1.0f / ((float)v->height * REFLECT_MARGIN);
+    r->refl_screen[2] = 0.5f - (0.5f + (float)v->x / (float)v->width) / REFLECT_MARGIN;
+    r->refl_screen[3] = 0.5f - (0.5f + (float)v->y / (float)v->height) / REFLECT_MARGIN;
+    /* gl_FragCoord to the eye-frame view ray (ndc_x / P00, ndc_y / P11, -1), and world -z in
+     * the eye frame (the third row of the rotation, negated): its dot with the ray over the
+     * ray's length is the sine of the depression, c / D */
+    r->refl_ray[0] = 2.0f / ((float)v->width * pr[0]);
+    r->refl_ray[1] = 2.0f / ((float)v->height * pr[5]);
+    r->refl_ray[2] = -(1.0f + 2.0f * (float)v->x / (float)v->width) / pr[0];
+    r->refl_ray[3] = -(1.0f + 2.0f * (float)v->y / (float)v->height) / pr[5];
+    for (int i = 0; i < 3; i++)
+        r->refl_down[i] = -vr[8 + i];   /* -V (0, 0, 1)^T's row: world z of an eye vector */
+    /* c / D_o, 0 for objects at infinity (ocean.frag's parallax factor) */
+    r->refl_down[3] = d && d->distance_m > 0.0f ? (float)(cz / d->distance_m) : 0.0f;
+    r->refl_blur = blur;
+    /* the map's vertical: world z in the eye frame, projected at the map's centre, one texel
+     * long in uv (rolled views turn it) */
+    float tx = vr[8] * out->proj[0] * (float)r->refl_w, ty = vr[9] * out->proj[5] * (float)r->refl_h;
+    float tl = sqrtf(tx * tx + ty * ty);
+    if (!(tl > 0.0f)) {
+        tx = 0.0f;
+        ty = tl = 1.0f;
+    }
+    r->refl_up[0] = tx / tl / (float)r->refl_w;
+    r->refl_up[1] = ty / tl / (float)r->refl_h;
+
+    glBindFramebuffer(GL_FRAMEBUFFER, r->refl_fbo);
+    glViewport(0, 0, r->refl_w, r->refl_h);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glFrontFace(GL_CW);   /* the mirror turns every triangle's winding */
+    r->refl_active = 1;
+    r->refl_ready = 0;
+    return gpu_check("renderer: reflection pass", err);
+}
+
+int renderer_reflection_end(struct renderer *r, struct swell_err *err)
+{
+    if (!r->refl_active)
+        return swell_fail(err, SWELL_E_ARG, "renderer: no reflection pass is open: begin one "
+                          "first");
+    r->refl_active = 0;
+    /* the mip chain, then its levels into the atlas: level 0 in the lower half, level l >= 1
+     * at x = w (1 - 2^(1 - l)) in the upper. Each is drawn at its own size over a fetch of
+     * the chain, whose implicit LOD is then exactly l. State the copy changes and the
+     * application's may hold (program, buffer, attribute 0, blend, depth, cull, the unit's
+     * binding) is the caller's to restore (api_ocean.c). */
+    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
+    glBindTexture(GL_TEXTURE_2D, r->refl_tex);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->refl_atlas_fbo);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glUseProgram(r->refl_copy.program);
+    glUniform1i(r->refl_copy_tex, r->d.texture_unit_first + UNIT_REFLECT);
+    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    for (int l = 0; l < r->refl_levels; l++) {
+        int lw = r->refl_w >> l > 0 ? r->refl_w >> l : 1;
+        int lh = r->refl_h >> l > 0 ? r->refl_h >> l : 1;
+        int x = l == 0 ? 0 : r->refl_w - (r->refl_w >> (l - 1));
+        glViewport(x, l == 0 ? 0 : r->refl_h, lw, lh);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+    glDisableVertexAttribArray(0);
+    if (getenv("SWELL_DEBUG_REFL")) {
+        static uint8_t px[512 * 1024 * 4];
+        glReadPixels(0, 0, r->refl_w, 2 * r->refl_h, GL_RGBA, GL_UNSIGNED_BYTE, px);
+        int n0 = 0, n1 = 0;
+        for (int i = 0; i < r->refl_w * r->refl_h; i++)
+            n0 += px[4 * i + 3] > 0;
+        for (int i = r->refl_w * r->refl_h; i < 2 * r->refl_w * r->refl_h; i++)
+            n1 += px[4 * i + 3] > 0;
+        fprintf(stderr, "refl atlas %dx%d: level 0 %d covered, upper %d\n", r->refl_w, r->refl_h, n0, n1);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->refl_prev_fbo);
+    glViewport(r->refl_prev_viewport[0], r->refl_prev_viewport[1], r->refl_prev_viewport[2],
+               r->refl_prev_viewport[3]);
+    glFrontFace((GLenum)r->refl_prev_front);
+    glActiveTexture((GLenum)r->refl_prev_active);
+    glClearColor(r->refl_prev_clear[0], r->refl_prev_clear[1], r->refl_prev_clear[2],
+                 r->refl_prev_clear[3]);
+    glDepthMask(r->refl_prev_depth_mask);
+    if (r->refl_prev_scissor)
+        glEnable(GL_SCISSOR_TEST);
+    r->refl_ready = 1;
+    return gpu_check("renderer: reflection pass end", err);
+}
+
+/* ocean.frag's reflection uniforms for a draw: the map of the pass ended since the last draw,
+ * else the transparent one (the sky alone). */
+void reflect_uniforms(const struct renderer *r, const GLint *u)
+{
+    if (!r->d.reflections)
+        return;
+    bind_tex(r, UNIT_REFLECT, r->refl_ready ? r->refl_atlas : r->refl_none, u[OU_REFL_TEX]);
+    glUniformMatrix3fv(u[OU_REFL_MAT], 1, GL_FALSE, r->refl_mat);
+    glUniform4fv(u[OU_REFL_SCREEN], 1, r->refl_screen);
+    glUniform4fv(u[OU_REFL_RAY], 1, r->refl_ray);
+    glUniform4fv(u[OU_REFL_DOWN], 1, r->refl_down);
+    glUniform1f(u[OU_REFL_BLUR], r->refl_blur);
+    glUniform2fv(u[OU_REFL_UP], 1, r->refl_up);
+    glUniform3f(u[OU_REFL_LEVELS], (float)(r->refl_levels - 1), 1.0f / (float)r->refl_w,
+                1.0f / (float)r->refl_h);
+}

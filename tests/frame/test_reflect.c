@@ -1,0 +1,465 @@
+/* test_reflect.c - local reflections (issue 18; Hu et al. 2006 §2.2, §5.2; Bruneton et al. 2010
+ * §6) as an embedding application uses them: a red board standing on the sea is drawn into
+ * swell's reflection pass with the pass's matrices, and the frame of the sea is compared with
+ * the same frame drawn without a pass (the board itself is not drawn, so every change is its
+ * reflection). Forced gles2-min unless a test compares tiers.
+ *
+ * - Where: on a calm sea the reflection lies where the mirror geometry puts it: the board's
+ *   corners mirrored in the sea plane and projected by the application's camera give a
+ *   rectangle; the reflection's centroid is within a few pixels of its centre (columns) and
+ *   inside it (rows), and most of the reflection lies inside it; gles2-min and gles3 alike.
+ * - Blur: the rougher the sea, the wider the reflection's spread beyond the board's own, as
+ *   eq. 27's footprint (2 sigma of the slopes, times the parallax factor) widens.
+ * - The sea beyond the objects reflects nothing of them (parallax); an ocean made for
+ *   reflections and drawn without a pass draws the sea it draws without them (where units are
+ *   spare); the pass restores the state it changes; misuse is refused with a message.
+ * Exit 77 (skip) only without an EGL device and CI unset (frame_util.h).
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include <GLES2/gl2.h>
+#include "frame/frame_util.h"
+#include "swell.h"
+
+#define W 480
+#define H 270
+#define EYE_Z 6.0
+#define PITCH -8.0
+#define BOARD_X 40.0             /* the board: 8 m wide, 6 m tall, across the view 40 m ahead */
+#define BOARD_HW 4.0
+#define BOARD_TOP 6.0
+
+static struct platform_handle g_ph;
+static GLuint g_fbo, g_prog;
+
+static void make_framebuffer(void)
+{
+    GLuint colour, depth;
+    glGenFramebuffers(1, &g_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+    glGenRenderbuffers(1, &colour);
+    glBindRenderbuffer(GL_RENDERBUFFER, colour);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA4, W, H);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, W, H);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    assert_int_equal(glCheckFramebufferStatus(GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
+}
+
+static GLuint board_program(void)
+{
+    static const char *src[2] = {
+        "attribute vec3 a_pos; uniform mat4 mvp;\n"
+        "void main() { gl_Position = mvp * vec4(a_pos, 1.0); }\n",
+        "precision mediump float;\nvoid main() { gl_FragColor = vec4(1.0, 0.1, 0.1, 1.0); }\n"
+    };
+    GLenum kind[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
+    GLuint p = glCreateProgram();
+    for (int i = 0; i < 2; i++) {
+        GLuint s = glCreateShader(kind[i]);
+        glShaderSource(s, 1, &src[i], NULL);
+        glCompileShader(s);
+        glAttachShader(p, s);
+    }
+    glBindAttribLocation(p, 0, "a_pos");
+    glLinkProgram(p);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    assert_true(ok);
+    return p;
+}
+
+static void mat_mul(const float a[16], const float b[16], float out[16])
+{
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            float acc = 0.0f;
+            for (int k = 0; k < 4; k++)
+                acc += a[4 * k + r] * b[4 * c + k];
+            out[4 * c + r] = acc;
+        }
+}
+
+/* The application's camera: EYE_Z m up at the origin, looking along +x, PITCH deg down. */
+static void app_view(swell_view *v)
+{
+    memset(v, 0, sizeof *v);
+    v->camera_pos[2] = EYE_Z;
+    double p = PITCH * M_PI / 180.0, f[3] = { cos(p), 0.0, sin(p) }, s[3] = { 0.0, -1.0, 0.0 };
+    double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
+                    s[0] * f[1] - s[1] * f[0] };
+    float r[16] = { (float)s[0], (float)u[0], (float)-f[0], 0, (float)s[1], (float)u[1],
+                    (float)-f[1], 0, (float)s[2], (float)u[2], (float)-f[2], 0, 0, 0, 0, 1 };
+    memcpy(v->view, r, sizeof r);
+    double t = 1.0 / tan(45.0 * M_PI / 360.0), n = 0.5, fa = 5000.0;
+    v->proj[0] = (float)(t * H / W);
+    v->proj[5] = (float)t;
+    v->proj[10] = (float)((fa + n) / (n - fa));
+    v->proj[11] = -1.0f;
+    v->proj[14] = (float)(2.0 * fa * n / (n - fa));
+    v->viewport[2] = W;
+    v->viewport[3] = H;
+    v->flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
+}
+
+/* The board, drawn with view and proj relative to eye (double, as an application would). */
+static void draw_board(const float view[16], const float proj[16], const double eye[3])
+{
+    float mvp[16];
+    mat_mul(proj, view, mvp);
+    float v[12];
+    double corner[4][3] = { { BOARD_X, -BOARD_HW, 0.0 }, { BOARD_X, BOARD_HW, 0.0 },
+                            { BOARD_X, -BOARD_HW, BOARD_TOP }, { BOARD_X, BOARD_HW, BOARD_TOP } };
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            v[3 * i + k] = (float)(corner[i][k] - eye[k]);
+    glUseProgram(g_prog);
+    glUniformMatrix4fv(glGetUniformLocation(g_prog, "mvp"), 1, GL_FALSE, mvp);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, v);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisableVertexAttribArray(0);
+    glDisable(GL_DEPTH_TEST);
+}
+
+/* The board's mirror image (its corners with z negated) on the screen: columns x0..x1, rows
+ * y0..y1 (GL's, from the bottom). */
+static void predicted_rect(const swell_view *v, double rect[4])
+{
+    float mvp[16];
+    mat_mul(v->proj, v->view, mvp);
+    rect[0] = rect[2] = 1e9;
+    rect[1] = rect[3] = -1e9;
+    for (int i = 0; i < 4; i++) {
+        float q[3] = { (float)BOARD_X, (float)(i & 1 ? BOARD_HW : -BOARD_HW),
+                       (float)(-(i & 2 ? BOARD_TOP : 0.0) - EYE_Z) };
+        float c[4];
+        for (int r = 0; r < 4; r++)
+            c[r] = mvp[r] * q[0] + mvp[4 + r] * q[1] + mvp[8 + r] * q[2] + mvp[12 + r];
+        double x = (c[0] / c[3] * 0.5 + 0.5) * W, y = (c[1] / c[3] * 0.5 + 0.5) * H;
+        rect[0] = fmin(rect[0], x);
+        rect[1] = fmax(rect[1], x);
+        rect[2] = fmin(rect[2], y);
+        rect[3] = fmax(rect[3], y);
+    }
+}
+
+struct refl_stats {
+    double weight;               /* the red excess summed, over the frame */
+    double cx, cy, sx, sy;       /* its centroid and standard deviations, pixels */
+    double inside;               /* the share of it inside the predicted rectangle + 3 px */
+    int changed;                 /* pixels that changed by more than 2 of 255 */
+    int changed_beyond;          /* ...of them where the flat sea is farther than `beyond` */
+    int top;                     /* the highest row whose red excess is half the largest
+                                  * row's or more (the reflection's edge at the waterline) */
+};
+
+/* The distance to the flat sea along pixel (x, y)'s view ray, m (1e30 above the horizon). */
+static double flat_distance(const swell_view *v, int x, int y)
+{
+    double e[3] = { ((2.0 * (x + 0.5) / W) - 1.0) / v->proj[0],
+                    ((2.0 * (y + 0.5) / H) - 1.0) / v->proj[5], -1.0 };
+    double z = v->view[8] * e[0] + v->view[9] * e[1] + v->view[10] * e[2];
+    double len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    return z < 0.0 ? EYE_Z * len / -z : 1e30;
+}
+
+/* Draw the sea with and without a reflection pass of the board; the red the pass added. */
+static void reflect_frames(swell_ocean *o, const swell_view *v, const swell_reflection_desc *rd,
+                           double t, double beyond, struct refl_stats *st)
+{
+    static uint8_t a[W * H * 4], b[W * H * 4];
+    struct swell_err err = { 0 };
+    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+    if (swell_ocean_draw(o, v, t, &err))
+        fail_msg("swell_ocean_draw: %s", err.msg);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, a);
+    swell_pass pass;
+    if (swell_ocean_begin_reflection(o, v, rd, &pass, &err))
+        fail_msg("swell_ocean_begin_reflection: %s", err.msg);
+    draw_board(pass.view, pass.proj, pass.camera_pos);
+    if (swell_ocean_end_reflection(o, &err))
+        fail_msg("swell_ocean_end_reflection: %s", err.msg);
+    if (swell_ocean_draw(o, v, t, &err))
+        fail_msg("swell_ocean_draw: %s", err.msg);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, b);
+    static int dumps;
+    if (getenv("REFLECT_DUMP")) {
+        char name[512];
+        snprintf(name, sizeof name, "%s%d.ppm", getenv("REFLECT_DUMP"), dumps++);
+        FILE *f = fopen(name, "wb");
+        fprintf(f, "P6 %d %d 255\n", W, 2 * H);
+        for (int y = H - 1; y >= 0; y--) for (int x = 0; x < W; x++) fwrite(b + 4 * (y * W + x), 1, 3, f);
+        for (int y = H - 1; y >= 0; y--) for (int x = 0; x < W; x++) fwrite(a + 4 * (y * W + x), 1, 3, f);
+        fclose(f);
+    }
+    double rect[4];
+    predicted_rect(v, rect);
+    double sw = 0, sx = 0, sy = 0, sxx = 0, syy = 0, in = 0, row_w[H] = { 0 };
+    int changed = 0, changed_beyond = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const uint8_t *p = b + 4 * (y * W + x), *q = a + 4 * (y * W + x);
+            int d = 0;
+            for (int c = 0; c < 3; c++)
+                d = abs(p[c] - q[c]) > d ? abs(p[c] - q[c]) : d;
+            changed += d > 2;
+            changed_beyond += d > 2 && flat_distance(v, x, y) > beyond;
+            double w = (double)((p[0] - p[1]) - (q[0] - q[1]));
+            if (w <= 0.0)
+                continue;
+            sw += w;
+            row_w[y] += w;
+            sx += w * x;
+            sy += w * y;
+            sxx += w * x * x;
+            syy += w * y * y;
+            in += w * (x >= rect[0] - 3 && x <= rect[1] + 3 && y >= rect[2] - 3 &&
+                       y <= rect[3] + 3);
+        }
+    memset(st, 0, sizeof *st);
+    double row_max = 0.0;
+    for (int y = 0; y < H; y++)
+        row_max = fmax(row_max, row_w[y]);
+    st->top = -1;
+    for (int y = 0; y < H; y++)
+        if (row_w[y] >= 0.5 * row_max && row_max > 0.0)
+            st->top = y;
+    st->changed = changed;
+    st->changed_beyond = changed_beyond;
+    st->weight = sw;
+    if (sw > 0) {
+        st->cx = sx / sw;
+        st->cy = sy / sw;
+        st->sx = sqrt(fmax(sxx / sw - st->cx * st->cx, 0.0));
+        st->sy = sqrt(fmax(syy / sw - st->cy * st->cy, 0.0));
+        st->inside = in / sw;
+    }
+    printf("  predicted x %.1f..%.1f y %.1f..%.1f; reflection weight %.0f at (%.1f, %.1f) "
+           "sd (%.1f, %.1f), top row %d, %.0f %% inside; %d pixels changed, %d beyond %g m\n",
+           rect[0], rect[1], rect[2], rect[3], st->weight, st->cx, st->cy, st->sx, st->sy,
+           st->top, 100.0 * st->inside, changed, changed_beyond, beyond);
+}
+
+static swell_sea *bake(float wind)
+{
+    swell_sea *sea = NULL;
+    struct swell_err err = { 0 };
+    swell_sea_desc sd = { .preset = "calm", .wind_speed_mps = wind, .budget_bytes = 4u << 20 };
+    if (swell_sea_bake(&sd, &sea, &err))
+        fail_msg("swell_sea_bake: %s", err.msg);
+    return sea;
+}
+
+static swell_ocean *ocean(const swell_sea *sea, int tier, int reflections)
+{
+    swell_ocean *o = NULL;
+    struct swell_err err = { 0 };
+    swell_ocean_desc od = { .tier = tier, .sun_elev_deg = 40.0f, .sun_azim_deg = 180.0f,
+                            .reflections = reflections };
+    if (swell_ocean_create(sea, &od, &o, &err))
+        fail_msg("swell_ocean_create: %s", err.msg);
+    return o;
+}
+
+static const swell_reflection_desc g_board = { .object_distance_m = (float)BOARD_X };
+
+static void mirror_position(int tier)
+{
+    swell_sea *sea = bake(1.0f);
+    swell_ocean *o = ocean(sea, tier, 1);
+    swell_view v;
+    app_view(&v);
+    double rect[4];
+    predicted_rect(&v, rect);
+    struct refl_stats st;
+    printf("tier %d, calm 1 m/s:\n", tier);
+    reflect_frames(o, &v, &g_board, 1.0, 1e30, &st);
+    /* a red of 100 over a third of the rectangle at least; centred on it within 3 px across;
+     * its edge at the waterline (where the sea stands at the board's distance: no parallax,
+     * no blur) within 3 px of the mirror's; half of it or more inside (the board's top,
+     * mirrored nearer the camera, moves and blurs with the waves: it spreads towards the
+     * camera, where the parallax grows) */
+    assert_true(st.weight > 100.0 * (rect[1] - rect[0]) * (rect[3] - rect[2]) / 3.0);
+    assert_true(fabs(st.cx - 0.5 * (rect[0] + rect[1])) < 3.0);
+    assert_true(fabs(st.top - rect[3]) < 3.0);
+    assert_true(st.inside > 0.5);
+    swell_ocean_destroy(o);
+    swell_sea_destroy(sea);
+}
+
+static void test_mirror_position_gles2_min(void **state)
+{
+    (void)state;
+    mirror_position(SWELL_TIER_GLES2_MIN);
+}
+
+static void test_mirror_position_gles3(void **state)
+{
+    (void)state;
+    mirror_position(SWELL_TIER_GLES3);
+}
+
+/* The reflection's spread grows with the wind (eq. 27's footprint with the slopes' sigma):
+ * across the view, where the board's own width is fixed and no horizon cuts it. */
+static void test_blur_with_roughness(void **state)
+{
+    (void)state;
+    static const float winds[3] = { 1.0f, 4.0f, 8.0f };
+    double spread[3];
+    swell_view v;
+    app_view(&v);
+    for (int i = 0; i < 3; i++) {
+        swell_sea *sea = bake(winds[i]);
+        swell_ocean *o = ocean(sea, SWELL_TIER_GLES2_MIN, 1);
+        struct refl_stats st;
+        printf("wind %.0f m/s:\n", (double)winds[i]);
+        reflect_frames(o, &v, &g_board, 1.0, 1e30, &st);
+        spread[i] = st.sx;
+        assert_true(st.weight > 0.0);
+        swell_ocean_destroy(o);
+        swell_sea_destroy(sea);
+    }
+    assert_true(spread[1] > 1.15 * spread[0]);
+    assert_true(spread[2] > 1.15 * spread[1]);
+}
+
+/* The sea at and beyond the objects reflects them as a flat mirror would: nothing of the
+ * board shows beyond it (with the board's distance given; without, as if it stood at infinity,
+ * the waves' blur carries its reflection there); a draw without a pass is the sea without
+ * reflections. */
+static void test_distance_and_no_pass(void **state)
+{
+    (void)state;
+    swell_sea *sea = bake(4.0f);
+    swell_ocean *o = ocean(sea, SWELL_TIER_GLES2_MIN, 1), *plain = ocean(sea, SWELL_TIER_GLES2_MIN, 0);
+    swell_view v;
+    app_view(&v);
+    struct refl_stats st, st_far;
+    const swell_reflection_desc far = { 0 };
+    printf("the board's distance given:\n");
+    reflect_frames(o, &v, &g_board, 1.0, BOARD_X + 2.0, &st);
+    printf("the board taken as far away:\n");
+    reflect_frames(o, &v, &far, 1.0, BOARD_X + 2.0, &st_far);
+    assert_int_equal(st.changed_beyond, 0);
+    assert_true(st_far.changed_beyond > 100);
+    /* and nearer the camera it moves and blurs less than at infinity */
+    assert_true(st.sy < st_far.sy);
+
+    swell_ocean_destroy(plain);
+    swell_ocean_destroy(o);
+    /* on a tier with units to spare (gles2-min's 8 are all in use: there the map's unit costs
+     * a slot's whitecap table, its whitecaps then from its patch's constants) */
+    o = ocean(sea, SWELL_TIER_GLES3, 1);
+    plain = ocean(sea, SWELL_TIER_GLES3, 0);
+    static uint8_t a[W * H * 4], b[W * H * 4];
+    struct swell_err err = { 0 };
+    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+    assert_int_equal(swell_ocean_draw(plain, &v, 1.0, &err), 0);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, a);
+    assert_int_equal(swell_ocean_draw(o, &v, 1.0, &err), 0);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, b);
+    int worst = 0;
+    for (int i = 0; i < W * H * 4; i++)
+        worst = abs(a[i] - b[i]) > worst ? abs(a[i] - b[i]) : worst;
+    printf("gles3: reflections on, no pass, vs off: largest difference %d of 255\n", worst);
+    assert_true(worst <= 1);
+    swell_ocean_destroy(plain);
+    swell_ocean_destroy(o);
+    swell_sea_destroy(sea);
+}
+
+/* The pass restores what it changes; misuse is refused with a message. */
+static void test_state_and_misuse(void **state)
+{
+    (void)state;
+    swell_sea *sea = bake(4.0f);
+    swell_ocean *o = ocean(sea, SWELL_TIER_GLES2_MIN, 1), *plain = ocean(sea, SWELL_TIER_GLES2_MIN, 0);
+    swell_view v;
+    app_view(&v);
+    struct swell_err err = { 0 };
+    swell_pass pass;
+    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
+    glViewport(3, 4, 100, 50);
+    glFrontFace(GL_CCW);
+    glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_SCISSOR_TEST);
+    assert_int_equal(swell_ocean_begin_reflection(o, &v, NULL, &pass, &err), 0);
+    GLint fb = 0, ff = 0, vp[4];
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
+    glGetIntegerv(GL_FRONT_FACE, &ff);
+    assert_int_not_equal(fb, (GLint)g_fbo);
+    assert_int_equal(ff, GL_CW);
+    assert_true(pass.viewport[2] >= 32 && pass.viewport[3] >= 32);
+    /* the mirror: the view's third column negated, the eye below the sea */
+    assert_true(pass.camera_pos[2] == -EYE_Z);
+    assert_true(fabsf(pass.view[8] + v.view[8]) < 1e-6f && fabsf(pass.view[0] - v.view[0]) < 1e-6f);
+    assert_int_equal(swell_ocean_begin_reflection(o, &v, NULL, &pass, &err), SWELL_E_ARG);
+    printf("begin twice: %s\n", err.msg);
+    assert_int_equal(swell_ocean_end_reflection(o, &err), 0);
+    GLfloat cc[4];
+    GLboolean dm = GL_TRUE;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
+    glGetIntegerv(GL_FRONT_FACE, &ff);
+    glGetIntegerv(GL_VIEWPORT, vp);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, cc);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &dm);
+    assert_int_equal(fb, (GLint)g_fbo);
+    assert_int_equal(ff, GL_CCW);
+    assert_true(vp[0] == 3 && vp[1] == 4 && vp[2] == 100 && vp[3] == 50);
+    assert_true(cc[0] == 0.25f && cc[1] == 0.5f && cc[2] == 0.75f);
+    assert_true(dm == GL_FALSE);
+    assert_true(glIsEnabled(GL_SCISSOR_TEST));
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glViewport(0, 0, W, H);
+    assert_int_equal(glGetError(), GL_NO_ERROR);
+
+    assert_int_equal(swell_ocean_end_reflection(o, &err), SWELL_E_ARG);
+    printf("end without begin: %s\n", err.msg);
+    assert_int_equal(swell_ocean_begin_reflection(plain, &v, NULL, &pass, &err), SWELL_E_ARG);
+    printf("an ocean without reflections: %s\n", err.msg);
+    assert_non_null(strstr(err.msg, "reflections = 1"));
+    swell_reflection_desc bad = { .object_distance_m = -1.0f };
+    assert_int_equal(swell_ocean_begin_reflection(o, &v, &bad, &pass, &err), SWELL_E_ARG);
+    printf("a negative distance: %s\n", err.msg);
+    bad.object_distance_m = NAN;
+    assert_int_equal(swell_ocean_begin_reflection(o, &v, &bad, &pass, &err), SWELL_E_ARG);
+    swell_ocean_destroy(plain);
+    swell_ocean_destroy(o);
+    swell_sea_destroy(sea);
+}
+
+int main(void)
+{
+    int rc = frame_open("test_reflect", W, H, &g_ph);
+    if (rc)
+        return rc;
+    make_framebuffer();
+    g_prog = board_program();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mirror_position_gles2_min),
+        cmocka_unit_test(test_mirror_position_gles3),
+        cmocka_unit_test(test_blur_with_roughness),
+        cmocka_unit_test(test_distance_and_no_pass),
+        cmocka_unit_test(test_state_and_misuse),
+    };
+    rc = cmocka_run_group_tests(tests, NULL, NULL);
+    platform_close(&g_ph);
+    return rc;
+}
