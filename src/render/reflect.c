@@ -19,8 +19,6 @@
  * two levels around the footprint there, each fetched bilinearly at its own level.
  */
 #include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include "render/internal.h"
 
@@ -303,16 +301,6 @@ int renderer_reflection_end(struct renderer *r, struct swell_err *err)
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     }
     glDisableVertexAttribArray(0);
-    if (getenv("SWELL_DEBUG_REFL")) {
-        static uint8_t px[512 * 1024 * 4];
-        glReadPixels(0, 0, r->refl_w, 2 * r->refl_h, GL_RGBA, GL_UNSIGNED_BYTE, px);
-        int n0 = 0, n1 = 0;
-        for (int i = 0; i < r->refl_w * r->refl_h; i++)
-            n0 += px[4 * i + 3] > 0;
-        for (int i = r->refl_w * r->refl_h; i < 2 * r->refl_w * r->refl_h; i++)
-            n1 += px[4 * i + 3] > 0;
-        fprintf(stderr, "refl atlas %dx%d: level 0 %d covered, upper %d\n", r->refl_w, r->refl_h, n0, n1);
-    }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->refl_prev_fbo);
     glViewport(r->refl_prev_viewport[0], r->refl_prev_viewport[1], r->refl_prev_viewport[2],
                r->refl_prev_viewport[3]);
