@@ -144,7 +144,6 @@ static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *e
         st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     }
     if (st != GL_FRAMEBUFFER_COMPLETE) {
-        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->refl_prev_fbo);
         release_target(r);
         return swell_fail(err, SWELL_E_GL, "renderer: the reflection target %dx%d (RGBA8, 16-bit "
                           "depth) is not complete on this device (status 0x%x)", w, h, st);
@@ -190,8 +189,11 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     glGetIntegerv(GL_ACTIVE_TEXTURE, &r->refl_prev_active);
     r->refl_prev_scissor = glIsEnabled(GL_SCISSOR_TEST);
     int rc = ensure_target(r, v->width, v->height, err);
-    if (rc)
+    if (rc) {   /* the application's binding and unit as they were */
+        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->refl_prev_fbo);
+        glActiveTexture((GLenum)r->refl_prev_active);
         return rc;
+    }
 
     /* the view mirrored: eye = V S (p - S c) = V (S p - c), S = diag(1, 1, -1) */
     memset(out, 0, sizeof *out);

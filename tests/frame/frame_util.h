@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <GLES2/gl2.h>
 #include "core/camera.h"
 #include "platform/platform.h"
 #include "render/renderer.h"
@@ -44,6 +45,48 @@ static inline int frame_draw(struct platform_handle *ph, struct renderer *r,
         (rc = ph->be->present(ph->p, err)) || (rc = ph->be->read_rgba(ph->p, rgba, err)))
         return rc;
     return 0;
+}
+
+/* An embedding application's framebuffer, as the API tests draw into: RGBA4 colour and 16-bit
+ * depth renderbuffers, w x h, left bound; 0 when it is not complete. */
+static inline GLuint frame_app_framebuffer(int w, int h)
+{
+    GLuint fbo, colour, depth;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(1, &colour);
+    glBindRenderbuffer(GL_RENDERBUFFER, colour);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA4, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
+}
+
+/* An application's object program: a_pos (attribute 0) by the uniform mvp, in one flat colour
+ * (alpha 1); 0 when it does not link. */
+static inline GLuint frame_flat_program(float r, float g, float b)
+{
+    char fs[160];
+    snprintf(fs, sizeof fs, "precision mediump float;\nvoid main() { gl_FragColor = "
+             "vec4(%.3f, %.3f, %.3f, 1.0); }\n", (double)r, (double)g, (double)b);
+    const char *src[2] = { "attribute vec3 a_pos; uniform mat4 mvp;\n"
+                           "void main() { gl_Position = mvp * vec4(a_pos, 1.0); }\n", fs };
+    GLenum kind[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
+    GLuint p = glCreateProgram();
+    for (int i = 0; i < 2; i++) {
+        GLuint sh = glCreateShader(kind[i]);
+        glShaderSource(sh, 1, &src[i], NULL);
+        glCompileShader(sh);
+        glAttachShader(p, sh);
+    }
+    glBindAttribLocation(p, 0, "a_pos");
+    glLinkProgram(p);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    return ok ? p : 0;
 }
 
 #endif

@@ -42,45 +42,6 @@ static struct platform_handle g_ph;
 static swell_sea *g_sea;
 static GLuint g_fbo, g_prog;
 
-static void make_framebuffer(void)
-{
-    GLuint colour, depth;
-    glGenFramebuffers(1, &g_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
-    glGenRenderbuffers(1, &colour);
-    glBindRenderbuffer(GL_RENDERBUFFER, colour);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA4, W, H);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
-    glGenRenderbuffers(1, &depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, W, H);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    assert_int_equal(glCheckFramebufferStatus(GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
-}
-
-static GLuint marker_program(void)
-{
-    static const char *src[2] = {
-        "attribute vec3 a_pos; uniform mat4 mvp;\n"
-        "void main() { gl_Position = mvp * vec4(a_pos, 1.0); }\n",
-        "precision mediump float;\nvoid main() { gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0); }\n"
-    };
-    GLenum kind[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
-    GLuint p = glCreateProgram();
-    for (int i = 0; i < 2; i++) {
-        GLuint s = glCreateShader(kind[i]);
-        glShaderSource(s, 1, &src[i], NULL);
-        glCompileShader(s);
-        glAttachShader(p, s);
-    }
-    glBindAttribLocation(p, 0, "a_pos");
-    glLinkProgram(p);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    assert_true(ok);
-    return p;
-}
-
 /* The application's camera: eye EYE_Z m up at the origin, heading 0, pitch PITCH deg (steep
  * enough that no nearer crest hides a marker). */
 #define EYE_Z 12.0
@@ -529,8 +490,12 @@ int main(void)
         fprintf(stderr, "test_api: baking: %s\n", err.msg);
         return 1;
     }
-    make_framebuffer();
-    g_prog = marker_program();
+    g_fbo = frame_app_framebuffer(W, H);
+    g_prog = frame_flat_program(0.0f, 1.0f, 0.0f);
+    if (!g_fbo || !g_prog) {
+        fprintf(stderr, "test_api: the application's framebuffer or program failed\n");
+        return 1;
+    }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_query_loop_and_low_pass),
         cmocka_unit_test(test_query_threads),

@@ -41,45 +41,6 @@
 static struct platform_handle g_ph;
 static GLuint g_fbo, g_prog;
 
-static void make_framebuffer(void)
-{
-    GLuint colour, depth;
-    glGenFramebuffers(1, &g_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
-    glGenRenderbuffers(1, &colour);
-    glBindRenderbuffer(GL_RENDERBUFFER, colour);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA4, W, H);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
-    glGenRenderbuffers(1, &depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, W, H);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    assert_int_equal(glCheckFramebufferStatus(GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
-}
-
-static GLuint board_program(void)
-{
-    static const char *src[2] = {
-        "attribute vec3 a_pos; uniform mat4 mvp;\n"
-        "void main() { gl_Position = mvp * vec4(a_pos, 1.0); }\n",
-        "precision mediump float;\nvoid main() { gl_FragColor = vec4(1.0, 0.1, 0.1, 1.0); }\n"
-    };
-    GLenum kind[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
-    GLuint p = glCreateProgram();
-    for (int i = 0; i < 2; i++) {
-        GLuint s = glCreateShader(kind[i]);
-        glShaderSource(s, 1, &src[i], NULL);
-        glCompileShader(s);
-        glAttachShader(p, s);
-    }
-    glBindAttribLocation(p, 0, "a_pos");
-    glLinkProgram(p);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    assert_true(ok);
-    return p;
-}
-
 static void mat_mul(const float a[16], const float b[16], float out[16])
 {
     for (int c = 0; c < 4; c++)
@@ -450,8 +411,12 @@ int main(void)
     int rc = frame_open("test_reflect", W, H, &g_ph);
     if (rc)
         return rc;
-    make_framebuffer();
-    g_prog = board_program();
+    g_fbo = frame_app_framebuffer(W, H);
+    g_prog = frame_flat_program(1.0f, 0.1f, 0.1f);
+    if (!g_fbo || !g_prog) {
+        fprintf(stderr, "test_reflect: the application's framebuffer or program failed\n");
+        return 1;
+    }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mirror_position_gles2_min),
         cmocka_unit_test(test_mirror_position_gles3),
