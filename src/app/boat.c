@@ -5,6 +5,7 @@
 #include <GLES2/gl2.h>
 
 #include "app/boat.h"
+#include "core/camera.h"
 #include "geometry/sea.h"
 #include "gl/shader.h"
 
@@ -204,26 +205,17 @@ void boat_draw(const struct boat *b, const float view[16], const float proj[16],
                const double eye[3], const float sun_dir[3])
 {
     const struct boat_pose *p = &b->pose;
-    float model[16] = { 0 }, vm[16], mvp[16];
+    mat4 model = GLM_MAT4_IDENTITY_INIT, v, pr, mvp;
     for (int c = 0; c < 3; c++)
         for (int r = 0; r < 3; r++)
-            model[4 * c + r] = p->rot[3 * c + r];
+            model[c][r] = p->rot[3 * c + r];
     for (int k = 0; k < 3; k++)
-        model[12 + k] = (float)(p->pos[k] - eye[k]);
-    model[15] = 1.0f;
-    for (int pass = 0; pass < 2; pass++) {
-        const float *a = pass ? proj : view, *m = pass ? vm : model;
-        float *o = pass ? mvp : vm;
-        for (int c = 0; c < 4; c++)
-            for (int r = 0; r < 4; r++) {
-                float s = 0.0f;
-                for (int k = 0; k < 4; k++)
-                    s += a[4 * k + r] * m[4 * c + k];
-                o[4 * c + r] = s;
-            }
-    }
+        model[3][k] = (float)(p->pos[k] - eye[k]);
+    memcpy(v, view, sizeof v);
+    memcpy(pr, proj, sizeof pr);
+    glm_mat4_mulN((mat4 *[]){ &pr, &v, &model }, 3, mvp);
     glUseProgram(b->prog.program);
-    glUniformMatrix4fv(b->u[U_MVP], 1, GL_FALSE, mvp);
+    glUniformMatrix4fv(b->u[U_MVP], 1, GL_FALSE, (const GLfloat *)mvp);
     glUniformMatrix3fv(b->u[U_ROT], 1, GL_FALSE, p->rot);
     glUniform3fv(b->u[U_SUN], 1, sun_dir);
     glBindBuffer(GL_ARRAY_BUFFER, b->vbo);
