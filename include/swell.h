@@ -28,9 +28,9 @@ extern "C" {
 #endif
 
 #define SWELL_VERSION_MAJOR 0
-#define SWELL_VERSION_MINOR 3
+#define SWELL_VERSION_MINOR 4
 #define SWELL_VERSION_PATCH 0
-#define SWELL_VERSION_STRING "0.3.0"
+#define SWELL_VERSION_STRING "0.4.0"
 /* (major << 16) | (minor << 8) | patch, comparable with swell_version() */
 #define SWELL_VERSION_NUMBER \
     ((SWELL_VERSION_MAJOR << 16) | (SWELL_VERSION_MINOR << 8) | SWELL_VERSION_PATCH)
@@ -168,6 +168,9 @@ typedef struct swell_ocean_desc {
                                  * at most 512 x 512, RGBA8 with mipmaps and 16-bit depth, and
                                  * an atlas of its levels (1.9 MiB at 1280 x 720, 3.8 MiB at
                                  * most); default 0: the sea reflects the sky alone */
+    int wakes;                  /* 1: a moving hull leaves a Kelvin wake (swell_ocean_set_wake):
+                                 * one more texture unit and a 512 x 256 RGBA8 map with mipmaps
+                                 * (683 KiB); default 0 */
 } swell_ocean_desc;
 
 /* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
@@ -243,6 +246,27 @@ SWELL_API int swell_ocean_begin_reflection(swell_ocean *ocean, const swell_view 
  * blurred by the waves as eq. 27 blurs the sky, and they hide the sun's glitter they stand in
  * front of); a draw with no pass before it reflects the sky alone. */
 SWELL_API int swell_ocean_end_reflection(swell_ocean *ocean, struct swell_err *err);
+
+/* ---- objects on the sea: the Kelvin wake (Bruneton et al. 2010 §6, local waves) -------- */
+
+/* A hull sailing at constant speed: its wake's waves (the 19.47 deg wedge of transverse and
+ * divergent waves, their lengths set by the speed, 2 pi U^2 / g on the track) add their slopes
+ * and slope variance to the sea's, and its foam (the stern's turbulent strip and where the
+ * wake breaks, decaying with the sea's foam half-life) to the whitecaps. Slopes and foam only:
+ * the geometry and swell_sea_sample do not include the wake's heights (decimetres). */
+typedef struct swell_wake {
+    double position_m[2];       /* the hull's middle on the water line, world x, y */
+    float heading_deg;          /* its course, CCW from east */
+    float speed_mps;            /* through the water, 0.5..30 m/s; 0: no wake */
+    float hull_length_m;        /* 1..400 m; 0 = 9 m */
+    float beam_m;               /* 0.2..100 m; 0 = a third of the length */
+} swell_wake;
+/* Set (or with NULL or speed 0 remove) the wake the next draws add (an ocean created with
+ * wakes = 1); call it every frame the hull moves: moving and turning cost nothing, a change
+ * of speed, length or beam by more than 2 % builds the map again (about 0.1 s on a 2-core
+ * x86 VM). */
+SWELL_API int swell_ocean_set_wake(swell_ocean *ocean, const swell_wake *wake,
+                                   struct swell_err *err);
 
 /* Move the sun (re-bakes the sky map: not for every frame). */
 SWELL_API int swell_ocean_set_sun(swell_ocean *ocean, float elev_deg, float azim_deg,

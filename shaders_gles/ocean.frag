@@ -1,7 +1,8 @@
 // ocean.frag - sea shading (Bruneton 2010 §4-5, Hu 2006 §5, Dupuy 2012 eq. 6-8).
 // validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0 | FS_PATTERNS=2 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 |
 // validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_NO_DETILE | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_NO_DETILE | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_LINEAR_OUT |
-// validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT SWELL_LINEAR_OUT
+// validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT SWELL_LINEAR_OUT |
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_WAKE | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_WAKE SWELL_REFLECT | FS_PATTERNS=0 FS_WHITECAPS=0 SWELL_WAKE SWELL_RUN_LOD
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
@@ -61,6 +62,14 @@ uniform float refl_blur;            // log2 of eq. 27's footprint per unit sigma
 uniform vec3 refl_levels;           // the map's last level; 1 / its width, height
 uniform vec2 refl_up;               // the map's vertical (world z's image at its centre), a
                                     // texel long, in uv
+#endif
+#ifdef SWELL_WAKE
+uniform sampler2D wake_tex;         // the hull's Kelvin wake (geometry/kelvin.h): mean slope,
+                                    // mean square slope, foam; mipmapped, clamped (wake.c)
+uniform mat3 wake_mat;              // gl_FragCoord -> the flat sea's point in the map, uv times w
+uniform vec4 wake_rot;              // the map's R, G -> world slope: xy per R, zw per G...
+uniform vec3 wake_k;                // ...plus xy; z: B -> the mean square slope
+uniform vec3 wake_foam;             // low quality: the foam's radiance (x exposure)
 #endif
 #ifdef QUALITY_HIGH
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
@@ -395,6 +404,21 @@ vec4 reflect_local(vec2 sky_uv, float sigma)
 }
 #endif
 
+#ifdef SWELL_WAKE
+// The wake at the flat sea's point under the pixel (wake.c): its slope in the world's axes
+// (xy), the slope variance within the fetch, <s^2> - <s>^2 (z), its foam (w). Outside the map
+// (and above the horizon, where w <= 0) nothing; the map's edges are still water, so the
+// boundary is not seen.
+vec4 wake_sample()
+{
+    vec3 h = wake_mat * vec3(gl_FragCoord.xy, 1.0);
+    float in_map = step(0.0, h.x) * step(h.x, h.z) * step(0.0, h.y) * step(h.y, h.z);
+    vec4 t = texture2D(wake_tex, h.xy / max(h.z, 1e-3));
+    vec2 s = t.r * wake_rot.xy + t.g * wake_rot.zw + wake_k.xy;
+    return in_map * vec4(s, max(t.b * wake_k.z - dot(s, s), 0.0), t.a);
+}
+#endif
+
 void main()
 {
     g_ds = vec2(0.0);   // ds = s - s0: the patches' means are in s0 (ocean.vert)
@@ -429,6 +453,14 @@ void main()
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 3
     WHITECAP(3, wc_tex3, v_uv23.zw);
 #endif
+#endif
+#ifdef SWELL_WAKE
+    // Local waves (Bruneton §6): the wake's slope joins the pixel's, the variance its fetch
+    // averaged joins the unresolved (evenly per axis: the map keeps |s|^2, not each axis's);
+    // low quality takes the variance per vertex and so misses the wake's
+    vec4 wake = wake_sample();
+    g_ds += wake.xy;
+    g_var += vec2(0.5 * wake.z);
 #endif
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.
     vec4 uv = v_lin + v_lin_dx * g_ds.x + v_lin_dy * g_ds.y;
@@ -494,6 +526,9 @@ void main()
 #else
     float cover = v_base.z;    // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif
+#ifdef SWELL_WAKE
+    cover = 1.0 - (1.0 - cover) * (1.0 - wake.w);    // the wake's foam with the whitecaps'
+#endif
     // Foam: Lambertian, reflectance 0.4 (Dupuy §2), lit by sun and sky.
     // Aerial perspective (vterms.glsl): the path scatters in (1 - T) times the horizon sky of
     // its azimuth (sky.h sky_haze), its phase weights from the vertex
@@ -504,6 +539,9 @@ void main()
 #else
     // Low quality: eq. 6's coverage and the haze per vertex (ocean.vert: foam and in-scattered
     // light, the clear sea's share).
+#ifdef SWELL_WAKE
+    clear_sea = mix(clear_sea, wake_foam, wake.w);  // the wake's foam over what is not whitecap
+#endif
     gl_FragColor = vec4(tone_map(clear_sea * v_fog.a + v_fog.rgb), 1.0);
 #endif
 }

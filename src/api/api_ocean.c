@@ -55,6 +55,7 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .sun_azim_deg = d->sun_azim_deg, .detile = d->detile,
         .texture_unit_first = d->texture_unit_first, .texture_unit_count = d->texture_unit_count,
         .linear_output = d->linear_output, .reflections = d->reflections != 0,
+        .wakes = d->wakes != 0,
     };
     struct gl_state st;
     o->unit0 = d->texture_unit_first;
@@ -184,6 +185,29 @@ int swell_ocean_end_reflection(swell_ocean *o, struct swell_err *err)
     glGetBooleanv(GL_DEPTH_WRITEMASK, &st.depth_mask);
     st.scissor_test = glIsEnabled(GL_SCISSOR_TEST);
     gl_state_restore(&st);
+    return rc;
+}
+
+int swell_ocean_set_wake(swell_ocean *o, const swell_wake *w, struct swell_err *err)
+{
+    if (!o)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_set_wake: ocean is NULL");
+    struct renderer_wake rw = { 0 };
+    if (w) {
+        rw.pos[0] = w->position_m[0];
+        rw.pos[1] = w->position_m[1];
+        rw.heading_deg = w->heading_deg;
+        rw.speed_mps = w->speed_mps;
+        rw.hull_length_m = w->hull_length_m;
+        rw.beam_m = w->beam_m;
+    }
+    /* a new map is uploaded on the wake's unit: restored as a draw restores it */
+    struct gl_state st;
+    save_state(o, &st);
+    int rc = renderer_set_wake(o->renderer, w ? &rw : NULL, err);
+    gl_state_restore(&st);
+    if (rc)
+        swell_err_context(err, "swell_ocean_set_wake");
     return rc;
 }
 

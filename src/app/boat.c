@@ -201,6 +201,11 @@ const struct boat_pose *boat_pose(const struct boat *b)
     return &b->pose;
 }
 
+const struct boat_desc *boat_get_desc(const struct boat *b)
+{
+    return &b->d;
+}
+
 void boat_draw(const struct boat *b, const float view[16], const float proj[16],
                const double eye[3], const float sun_dir[3])
 {

@@ -39,6 +39,7 @@ int  boat_create(const struct boat_desc *d, const char *shader_dir, const struct
  * hull (sea.h sea_query_init); heave the mean, pitch and roll their slopes. */
 void boat_pose_at(struct boat *b, const struct swell_tables *t, int detile, double t_s);
 const struct boat_pose *boat_pose(const struct boat *b);
+const struct boat_desc *boat_get_desc(const struct boat *b);
 /* Draw it with a view (world-to-eye rotation, column-major) and projection relative to the eye
  * at eye (the camera's, or a reflection pass's mirrored one), lit by the sun (towards it,
  * world). Depth-tested with GL_LEQUAL; no culling; leaves its program and buffer bound. */

@@ -21,6 +21,7 @@
 #include "platform/input.h"
 #include "platform/platform.h"
 #include "core/preset.h"
+#include "geometry/kelvin.h"
 #include "render/renderer.h"
 #include "tables/tables_io.h"
 #include "render/upscale.h"
@@ -112,19 +113,27 @@ static void sun_direction(float elev_deg, float azim_deg, float out[3])
     out[2] = (float)sin(e);
 }
 
-/* The demo boat in a frame (--boat): its pose on the sea at t, its reflection pass (before the
- * sea: the renderer reads it), which the caller follows with the sea and then boat_draw. */
-static int boat_reflection(struct renderer *r, struct boat *b, const struct swell_tables *tables,
-                           const struct renderer_view *v, double t, const float sun_dir[3],
-                           struct swell_err *err)
+/* The demo boat in a frame (--boat): its pose on the sea at t, its wake (none below the
+ * slowest speed a wake is drawn for) and its reflection pass (before the sea: the renderer
+ * reads both), which the caller follows with the sea and then boat_draw. */
+static int boat_passes(struct renderer *r, struct boat *b, const struct swell_tables *tables,
+                       const struct renderer_view *v, double t, const float sun_dir[3],
+                       struct swell_err *err)
 {
     boat_pose_at(b, tables, renderer_detile(r), t);
     const struct boat_pose *p = boat_pose(b);
+    const struct boat_desc *bd = boat_get_desc(b);
+    struct renderer_wake wk = {
+        .pos = { p->pos[0], p->pos[1] }, .heading_deg = bd->heading_deg,
+        .speed_mps = bd->speed_mps, .hull_length_m = BOAT_LENGTH_M, .beam_m = BOAT_BEAM_M,
+    };
+    int rc = renderer_set_wake(r, bd->speed_mps >= KELVIN_MIN_SPEED_MPS ? &wk : NULL, err);
+    if (rc)
+        return rc;
     double dx = p->pos[0] - v->cam.pos[0], dy = p->pos[1] - v->cam.pos[1];
     struct renderer_reflection rr = { .distance_m = (float)sqrt(dx * dx + dy * dy) };
     struct renderer_pass pass;
-    int rc = renderer_reflection_begin(r, v, &rr, &pass, err);
-    if (rc)
+    if ((rc = renderer_reflection_begin(r, v, &rr, &pass, err)))
         return rc;
     glEnable(GL_DEPTH_TEST);
     boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir);
@@ -214,6 +223,8 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (keys.boat && boat) {
             boat_shown = !boat_shown;
             printf("swell: boat %s\n", boat_shown ? "shown" : "hidden");
+            if (!boat_shown && (rc = renderer_set_wake(r, NULL, err)))
+                break;
         }
         struct camera cam = live;
         if (o->path > CAMERA_PATH_NONE)
@@ -227,7 +238,7 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (!rc && up)
             upscale_begin(up);
         if (!rc && boat && boat_shown)
-            rc = boat_reflection(r, boat, tables, &view, t, sun_dir, err);
+            rc = boat_passes(r, boat, tables, &view, t, sun_dir, err);
         if (!rc)
             rc = renderer_frame(r, &cam, t, fw, fh, err);
         if (!rc && boat && boat_shown) {
@@ -379,7 +390,7 @@ int main(int argc, char **argv)
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
         .debug_variants = o.debug_variants,
-        .detile = o.detile, .reflections = o.boat,
+        .detile = o.detile, .reflections = o.boat, .wakes = o.boat,
     };
     rc = renderer_open(&rd, &gpu, o.tier, budget, note_fallback, NULL, &r, &err);
     o.quality = rd.quality;

@@ -247,6 +247,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform3fv(u[OU_LIN_S0], 1, r->vf.lin_s0);
     glUniform2fv(u[OU_TOTAL_VAR], 1, r->vf.total_var);
     reflect_uniforms(r, u);
+    wake_uniforms(r, view, u, foam);
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with

@@ -18,6 +18,7 @@
 #include "gl/capture.h"
 #include "geometry/detile.h"
 #include "geometry/vshade.h"
+#include "geometry/kelvin.h"
 
 #define SKY_MAP_SIZE 256
 #define FRESNEL_FALLBACK 64
@@ -34,7 +35,8 @@ enum ocean_uniform {
     OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
     OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_REFL_TEX, OU_REFL_MAT,
     OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
-    OU_REFL_LEVELS, OU_REFL_UP, OU_COUNT
+    OU_REFL_LEVELS, OU_REFL_UP, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM,
+    OU_COUNT
 };
 
 enum sky_uniform {
@@ -107,9 +109,11 @@ enum vtf_uniform {
 };
 
 /* Texture units: 0 Fresnel, 1 sky, 2 the reflection map where renderer_desc reflections asks
- * for one (reflect.c), then slope/whitecap per fragment pattern slot (unit_patterns). */
+ * for one (reflect.c), then the wake's map where wakes asks (wake.c), then slope/whitecap per
+ * fragment pattern slot (unit_patterns). */
 enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_REFLECT = 2 };
-#define UNIT_PATTERNS_OF(reflections) (2 + ((reflections) != 0))
+#define UNIT_WAKE_OF(reflections) (2 + ((reflections) != 0))
+#define UNIT_PATTERNS_OF(reflections, wakes) (UNIT_WAKE_OF(reflections) + ((wakes) != 0))
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
 #define VAR_KNOTS 4                   /* low quality's pixel variance per run (pixel_var_at) */
@@ -232,12 +236,20 @@ struct renderer {
     GLint refl_prev_fbo, refl_prev_viewport[4], refl_prev_front, refl_prev_active;
     GLfloat refl_prev_clear[4];
     GLboolean refl_prev_depth_mask, refl_prev_scissor;
+    /* The Kelvin wake (wake.c, renderer_desc wakes) */
+    GLuint wake_tex;                  /* kelvin.h's map, mipmapped, clamped */
+    GLuint wake_none;                 /* 1x1 still water: no wake set */
+    int wake_on;                      /* renderer_set_wake gave one */
+    int wake_w, wake_h;               /* the map's texels (0: none built) */
+    struct kelvin_desc wake_built;    /* the hull and speed the map was built for */
+    struct renderer_wake wake;        /* where it is now */
+    double wake_ahead, wake_length, wake_half_width, wake_slope_scale;
 };
 
 /* The first unit of the pattern slots' tables. */
 static inline int unit_patterns(const struct renderer *r)
 {
-    return UNIT_PATTERNS_OF(r->d.reflections);
+    return UNIT_PATTERNS_OF(r->d.reflections, r->d.wakes);
 }
 
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
@@ -295,6 +307,12 @@ int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err *err);
 int reflect_create(struct renderer *r, struct swell_err *err);
 void reflect_destroy(struct renderer *r);
 void reflect_uniforms(const struct renderer *r, const GLint *u);
+
+/* wake.c */
+int wake_create(struct renderer *r, struct swell_err *err);
+void wake_destroy(struct renderer *r);
+void wake_uniforms(const struct renderer *r, const struct camera_frame *view, const GLint *u,
+                   const float foam[3]);
 
 /* frame.c */
 void renderer_view_frame(const struct renderer_view *v, const struct camera *cam,

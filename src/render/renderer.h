@@ -74,6 +74,8 @@ struct renderer_desc {
     int reflections;                    /* 1: local reflections of the application's objects
                                          * (reflect.c): a texture unit and a reflection target
                                          * (renderer_reflection_begin); default 0: the sky alone */
+    int wakes;                          /* 1: a Kelvin wake behind a moving hull (wake.c): a
+                                         * texture unit, renderer_set_wake; default 0 */
     int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
                                          * naming the ocean program it is drawn with, no sky
                                          * (white): the screen's share of each program
@@ -172,6 +174,18 @@ int  renderer_reflection_begin(struct renderer *r, const struct renderer_view *v
                                const struct renderer_reflection *d, struct renderer_pass *out,
                                struct swell_err *err);
 int  renderer_reflection_end(struct renderer *r, struct swell_err *err);
+/* The Kelvin wake (renderer_desc wakes; geometry/kelvin.h; Bruneton 2010 §6): a hull at pos
+ * (world, m; its middle on the water line) sailing along heading_deg (CCW from +x) at
+ * speed_mps leaves a wake whose slopes, slope variance and foam the next draws add to the
+ * sea's. Its map is built again (about 30 ms for 512 x 256) only when the hull or the speed
+ * changes by more than 2 %; moving and turning cost nothing. NULL or speed 0: no wake. */
+struct renderer_wake {
+    double pos[2];
+    float heading_deg;
+    float speed_mps;                    /* 0: none; else KELVIN_MIN..MAX_SPEED_MPS */
+    float hull_length_m, beam_m;        /* 0: 9 m and a third of the length */
+};
+int  renderer_set_wake(struct renderer *r, const struct renderer_wake *w, struct swell_err *err);
 /* Move the sun (degrees above the horizon in (0, 90], azimuth CCW from +x): re-bakes the sky
  * map (about 11 M instructions at 256^2) and the automatic exposure; not for every frame. */
 int  renderer_set_sun(struct renderer *r, float elev_deg, float azim_deg, struct swell_err *err);

@@ -4,6 +4,7 @@
 #ifndef SWELL_TESTS_FRAME_UTIL_H
 #define SWELL_TESTS_FRAME_UTIL_H
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 #include "core/camera.h"
 #include "platform/platform.h"
 #include "render/renderer.h"
+#include "swell.h"
 
 /* 0 when the surfaceless platform is open at w x h (GLES 3 context, tiers are forced lower),
  * else the exit status main() should return: 1 under CI=true, 77 (skip) elsewhere. */
@@ -87,6 +89,49 @@ static inline GLuint frame_flat_program(float r, float g, float b)
     GLint ok = 0;
     glGetProgramiv(p, GL_LINK_STATUS, &ok);
     return ok ? p : 0;
+}
+
+/* An application's camera as a swell_view: the eye at eye (m), looking along heading_deg (CCW
+ * from +x) pitch_deg up (negative: down), no roll; a 45 deg vertical field of view, near 0.5 m,
+ * far 5 km; the viewport w x h at the origin; clear and sky. */
+static inline void frame_app_view(swell_view *v, const double eye[3], double heading_deg,
+                                  double pitch_deg, int w, int h)
+{
+    memset(v, 0, sizeof *v);
+    memcpy(v->camera_pos, eye, sizeof v->camera_pos);
+    double hd = heading_deg * M_PI / 180.0, p = pitch_deg * M_PI / 180.0;
+    double f[3] = { cos(p) * cos(hd), cos(p) * sin(hd), sin(p) }, s[3] = { sin(hd), -cos(hd), 0.0 };
+    double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
+                    s[0] * f[1] - s[1] * f[0] };
+    float r[16] = { (float)s[0], (float)u[0], (float)-f[0], 0, (float)s[1], (float)u[1],
+                    (float)-f[1], 0, (float)s[2], (float)u[2], (float)-f[2], 0, 0, 0, 0, 1 };
+    memcpy(v->view, r, sizeof r);
+    double t = 1.0 / tan(45.0 * M_PI / 360.0), n = 0.5, fa = 5000.0;
+    v->proj[0] = (float)(t * h / w);
+    v->proj[5] = (float)t;
+    v->proj[10] = (float)((fa + n) / (n - fa));
+    v->proj[11] = -1.0f;
+    v->proj[14] = (float)(2.0 * fa * n / (n - fa));
+    v->viewport[2] = w;
+    v->viewport[3] = h;
+    v->flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
+}
+
+/* The flat sea's point (z = 0) under pixel (x, y) (GL's rows, from the bottom) of view v, its
+ * viewport at the origin: 0 and xy, or -1 above the horizon. */
+static inline int frame_sea_point(const swell_view *v, double x, double y, double xy[2])
+{
+    double e[3] = { ((2.0 * (x + 0.5) / v->viewport[2]) - 1.0) / v->proj[0],
+                    ((2.0 * (y + 0.5) / v->viewport[3]) - 1.0) / v->proj[5], -1.0 };
+    double d[3];
+    for (int i = 0; i < 3; i++)   /* world = R^T eye: row i of R^T is column i of the view */
+        d[i] = v->view[4 * i + 0] * e[0] + v->view[4 * i + 1] * e[1] + v->view[4 * i + 2] * e[2];
+    if (d[2] >= -1e-9)
+        return -1;
+    double t = v->camera_pos[2] / -d[2];
+    xy[0] = v->camera_pos[0] + t * d[0];
+    xy[1] = v->camera_pos[1] + t * d[1];
+    return 0;
 }
 
 #endif

@@ -55,23 +55,8 @@ static void mat_mul(const float a[16], const float b[16], float out[16])
 /* The application's camera: EYE_Z m up at the origin, looking along +x, PITCH deg down. */
 static void app_view(swell_view *v)
 {
-    memset(v, 0, sizeof *v);
-    v->camera_pos[2] = EYE_Z;
-    double p = PITCH * M_PI / 180.0, f[3] = { cos(p), 0.0, sin(p) }, s[3] = { 0.0, -1.0, 0.0 };
-    double u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
-                    s[0] * f[1] - s[1] * f[0] };
-    float r[16] = { (float)s[0], (float)u[0], (float)-f[0], 0, (float)s[1], (float)u[1],
-                    (float)-f[1], 0, (float)s[2], (float)u[2], (float)-f[2], 0, 0, 0, 0, 1 };
-    memcpy(v->view, r, sizeof r);
-    double t = 1.0 / tan(45.0 * M_PI / 360.0), n = 0.5, fa = 5000.0;
-    v->proj[0] = (float)(t * H / W);
-    v->proj[5] = (float)t;
-    v->proj[10] = (float)((fa + n) / (n - fa));
-    v->proj[11] = -1.0f;
-    v->proj[14] = (float)(2.0 * fa * n / (n - fa));
-    v->viewport[2] = W;
-    v->viewport[3] = H;
-    v->flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
+    static const double eye[3] = { 0.0, 0.0, EYE_Z };
+    frame_app_view(v, eye, 0.0, PITCH, W, H);
 }
 
 /* The board, drawn with view and proj relative to eye (double, as an application would). */

@@ -1,0 +1,162 @@
+/* wake.c - the Kelvin wake of the application's hull on the sea (issue 18; Bruneton et al.
+ * 2010 §6: local waves added with their slopes and slope variances, so the sun's and the
+ * sky's reflections stay consistent at every distance).
+ *
+ * geometry/kelvin.h builds the wake's map in the hull's frame: mean slope, mean square slope
+ * and foam, a mip chain of box means. ocean.frag (SWELL_WAKE) reads it at the flat sea's point
+ * under the pixel: gl_FragCoord to the sea plane is a projective map (the view ray met with
+ * z = 0), and on to the hull's frame an affine one, so one 3 x 3 matrix (wake_mat) takes the
+ * pixel to the map's uv times w. The fetch's implicit LOD is the right one here (the map's
+ * coordinates are smooth over the screen, unlike the reflection map's), so distant wake
+ * waves average out in the mean slope while their variance stays, as the patterns' do
+ * (Bruneton §4.1). The slopes are rotated into the world's axes and added to the pixel's slope
+ * deviation, the variance within the fetch to its slope variance (split evenly between the
+ * axes), the foam to the whitecap coverage. The geometry is not displaced by the wake (its
+ * heights are a few decimetres) and the CPU query does not include it.
+ */
+#include <math.h>
+#include <string.h>
+#include "render/internal.h"
+
+#define WAKE_MAP_W 512   /* along the track */
+#define WAKE_MAP_H 256   /* across it */
+#define WAKE_REBUILD 0.02
+
+void wake_destroy(struct renderer *r)
+{
+    if (r->wake_w)
+        gpu_texture_destroy(r->gpu, &r->wake_tex);
+    r->wake_w = r->wake_h = 0;
+    gpu_texture_destroy(r->gpu, &r->wake_none);
+}
+
+/* The 1x1 still-water map a draw reads while no wake is set. */
+int wake_create(struct renderer *r, struct swell_err *err)
+{
+    static const uint8_t still[4] = { 128, 128, 0, 0 };
+    if (!r->d.wakes)
+        return 0;
+    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_WAKE_OF(r->d.reflections)));
+    int rc = gpu_texture_create(r->gpu, 1, 1, 1, FORMAT_RGBA8, 0, "wake (none)", &r->wake_none,
+                                err);
+    if (rc)
+        return rc;
+    return upload_single(r->wake_none, 1, 1, still, "wake (none)", err);
+}
+
+static int differs(double a, double b)
+{
+    return fabs(a - b) > WAKE_REBUILD * fmax(fabs(a), fabs(b));
+}
+
+int renderer_set_wake(struct renderer *r, const struct renderer_wake *w, struct swell_err *err)
+{
+    if (!r->d.wakes)
+        return swell_fail(err, SWELL_E_ARG, "renderer: no wake map: create the ocean with "
+                          "wakes = 1");
+    if (!w || w->speed_mps == 0.0f) {
+        r->wake_on = 0;
+        return 0;
+    }
+    if (!isfinite(w->pos[0]) || !isfinite(w->pos[1]) || !isfinite(w->heading_deg))
+        return swell_fail(err, SWELL_E_ARG, "wake: position (%g, %g) m and heading %g deg must "
+                          "be finite", w->pos[0], w->pos[1], (double)w->heading_deg);
+    struct kelvin_desc kd = {
+        .speed_mps = w->speed_mps,
+        .hull_length_m = w->hull_length_m > 0.0f ? w->hull_length_m : 9.0,
+        .foam_half_life_s = r->t->state.foam_half_life_s,
+    };
+    kd.beam_m = w->beam_m > 0.0f ? w->beam_m : kd.hull_length_m / 3.0;
+    int rc = kelvin_check(&kd, err);
+    if (rc)
+        return rc;
+    const struct kelvin_desc *b = &r->wake_built;
+    if (!r->wake_w || differs(kd.speed_mps, b->speed_mps) ||
+        differs(kd.hull_length_m, b->hull_length_m) || differs(kd.beam_m, b->beam_m)) {
+        struct kelvin_map m;
+        if ((rc = kelvin_map_build(&kd, WAKE_MAP_W, WAKE_MAP_H, &m, err)))
+            return rc;
+        glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first +
+                                               UNIT_WAKE_OF(r->d.reflections)));
+        if (!r->wake_w) {
+            rc = gpu_texture_create(r->gpu, m.w, m.h, m.levels, FORMAT_RGBA8, 0, "wake map",
+                                    &r->wake_tex, err);
+            if (rc) {
+                kelvin_map_free(&m);
+                return rc;
+            }
+            r->wake_w = m.w;
+            r->wake_h = m.h;
+        }
+        struct chain_tex c = { { r->wake_tex }, 0 };   /* one texture, its levels */
+        rc = upload_chain(&c, m.w, m.h, m.levels, m.rgba, "renderer: wake map upload", err);
+        r->wake_ahead = m.ahead_m;
+        r->wake_length = m.ahead_m + m.behind_m;
+        r->wake_half_width = m.half_width_m;
+        r->wake_slope_scale = m.slope_scale;
+        kelvin_map_free(&m);
+        if (rc)
+            return rc;
+        r->wake_built = kd;
+    }
+    r->wake = *w;
+    r->wake_on = 1;
+    return 0;
+}
+
+/* ocean.frag's wake uniforms for a draw of view. */
+void wake_uniforms(const struct renderer *r, const struct camera_frame *view, const GLint *u,
+                   const float foam[3])
+{
+    if (!r->d.wakes)
+        return;
+    int on = r->wake_on && r->wake_w;
+    bind_tex(r, UNIT_WAKE_OF(r->d.reflections), on ? r->wake_tex : r->wake_none, u[OU_WAKE_TEX]);
+    glUniform3fv(u[OU_WAKE_FOAM], 1, foam);
+    double h = view->cam.pos[2] > 0.01 ? view->cam.pos[2] : 0.01;
+    double hd = r->wake.heading_deg * M_PI / 180.0;
+    double f[2] = { cos(hd), sin(hd) }, l[2] = { -f[1], f[0] };
+    double sc = on ? r->wake_slope_scale : 0.0;
+    /* the map's bytes to world slopes: s = (255 t - 128) / 127 scale along (f, l) */
+    double a = 255.0 / 127.0 * sc, c = 128.0 / 127.0 * sc;
+    float rot[4] = { (float)(a * f[0]), (float)(a * f[1]), (float)(a * l[0]), (float)(a * l[1]) };
+    float k[3] = { (float)(-c * (f[0] + l[0])), (float)(-c * (f[1] + l[1])), (float)(sc * sc) };
+    glUniform4fv(u[OU_WAKE_ROT], 1, rot);
+    glUniform3fv(u[OU_WAKE_K], 1, k);
+    /* gl_FragCoord -> the eye-frame ray e = E (fx, fy, 1) (a symmetric perspective) */
+    double p0 = view->proj[0][0], p1 = view->proj[1][1];
+    double e[3][3] = {
+        { 2.0 / (view->width * p0), 0.0, -(1.0 + 2.0 * view->x / view->width) / p0 },
+        { 0.0, 2.0 / (view->height * p1), -(1.0 + 2.0 * view->y / view->height) / p1 },
+        { 0.0, 0.0, -1.0 },
+    };
+    /* -> the world direction d = R^T e (R = view_rel's rotation, [col][row]) -> the flat sea's
+     * point relative to the camera, homogeneous: (h d_x, h d_y, -d_z) */
+    double q[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double d = 0.0;
+            for (int k2 = 0; k2 < 3; k2++)
+                d += (double)view->view_rel[i][k2] * e[k2][j];
+            q[i][j] = i < 2 ? h * d : -d;
+        }
+    /* -> the hull's frame and the map: u = (ahead - x) / length, v = (y + hw) / (2 hw), with
+     * x, y the point less the hull's position along f and l */
+    double cb[2] = { view->cam.pos[0] - r->wake.pos[0], view->cam.pos[1] - r->wake.pos[1] };
+    double len = r->wake_length > 0.0 ? r->wake_length : 1.0;
+    double hw = r->wake_half_width > 0.0 ? r->wake_half_width : 1.0;
+    double aff[3][3] = {
+        { -f[0] / len, -f[1] / len, (r->wake_ahead - (cb[0] * f[0] + cb[1] * f[1])) / len },
+        { l[0] / (2.0 * hw), l[1] / (2.0 * hw), (hw + cb[0] * l[0] + cb[1] * l[1]) / (2.0 * hw) },
+        { 0.0, 0.0, 1.0 },
+    };
+    float mat[9];   /* column-major */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double s = 0.0;
+            for (int k2 = 0; k2 < 3; k2++)
+                s += aff[i][k2] * q[k2][j];
+            mat[3 * j + i] = (float)s;
+        }
+    glUniformMatrix3fv(u[OU_WAKE_MAT], 1, GL_FALSE, mat);
+}
