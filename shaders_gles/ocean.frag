@@ -66,7 +66,9 @@ uniform vec2 refl_up;               // the map's vertical (world z's image at it
 #ifdef SWELL_WAKE
 uniform sampler2D wake_tex;         // the hull's Kelvin wake (geometry/kelvin.h): mean slope,
                                     // mean square slope, foam; mipmapped, clamped (wake.c)
-uniform mat3 wake_mat;              // gl_FragCoord -> the flat sea's point in the map, uv times w
+uniform mat3 wake_mat;              // gl_FragCoord -> the flat sea's point in the hull's frame,
+                                    // (P, Q / spread) times w (wake.c)
+uniform vec4 wake_warp;             // (P, Q) -> the map's (u, v) (geometry/kelvin.h)
 uniform vec4 wake_rot;              // the map's R, G -> world slope: xy per R, zw per G...
 uniform vec3 wake_k;                // ...plus xy; z: B -> the mean square slope
 uniform vec3 wake_foam;             // low quality: the foam's radiance (x exposure)
@@ -412,8 +414,15 @@ vec4 reflect_local(vec2 sky_uv, float sigma)
 vec4 wake_sample()
 {
     vec3 h = wake_mat * vec3(gl_FragCoord.xy, 1.0);
-    float in_map = step(0.0, h.x) * step(h.x, h.z) * step(0.0, h.y) * step(h.y, h.z);
-    vec4 t = texture2D(wake_tex, h.xy / max(h.z, 1e-3));
+    // kelvin.h: u = a sqrt(P + e) + b, v = 1/2 + Q / (spread (P + offset)); the map is P in
+    // [0, 1], v in [0, 1]; outside, and above the horizon (w <= 0), nothing
+    vec2 pq = h.xy / max(h.z, 1e-3);
+    float p = max(pq.x, 0.0);
+    vec2 uv = vec2(sqrt(p + wake_warp.x) * wake_warp.y + wake_warp.z,
+                   0.5 + pq.y / (p + wake_warp.w));
+    float in_map = step(0.0, h.z) * step(0.0, pq.x) * step(pq.x, 1.0) * step(0.0, uv.y) *
+                   step(uv.y, 1.0);
+    vec4 t = texture2D(wake_tex, uv);
     vec2 s = t.r * wake_rot.xy + t.g * wake_rot.zw + wake_k.xy;
     return in_map * vec4(s, max(t.b * wake_k.z - dot(s, s), 0.0), t.a);
 }

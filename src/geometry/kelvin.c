@@ -59,8 +59,9 @@ void kelvin_eval(const struct kelvin_desc *d, double x, double y, struct kelvin_
         double kappa = k0 * r;
         /* source strength (kelvin.h): KELVIN_HEIGHT_COEF U^2 / g at r = L on the track */
         double a0 = KELVIN_HEIGHT_COEF * u * sqrt(len) / sqrt(2.0 * PI_D * G);
-        /* near field faded in over half a hull, the far end of the map faded out */
-        double fade = (1.0 - exp(-(r / (0.5 * len)) * (r / (0.5 * len)))) *
+        /* the near field (stationary phase holds for g r / U^2 >> 1) faded in over a hull
+         * length, the far end of the map faded out */
+        double fade = (1.0 - exp(-(r / len) * (r / len))) *
                       (1.0 - smooth01((bx / span - 0.8) / 0.17));
         if (disc >= 0.0 && fade > 0.0) {
             double sq = sqrt(disc);
@@ -90,7 +91,7 @@ void kelvin_eval(const struct kelvin_desc *d, double x, double y, struct kelvin_
     double hl = d->foam_half_life_s;
     /* foam where the wake breaks: slopes past a breaking slope, from when the bow passed */
     double sm = hypot(out->slope[0], out->slope[1]);
-    double f_break = bx > 0.0 ? smooth01((sm - 0.12) / 0.12) * exp2(-bx / u / hl) : 0.0;
+    double f_break = bx > 0.0 ? smooth01((sm - 0.2) / 0.2) * exp2(-bx / u / hl) : 0.0;
     /* the stern's turbulent strip, the beam wide and widening, from when the stern passed */
     double sx = -0.5 * len - x, f_stern = 0.0;
     if (sx > -0.25 * len) {
@@ -113,10 +114,12 @@ int kelvin_map_build(const struct kelvin_desc *d, int w, int h, struct kelvin_ma
                           "16..4096", w, h);
     out->w = w;
     out->h = h;
-    out->ahead_m = d->hull_length_m;
-    out->behind_m = wake_behind(d);
-    out->half_width_m = tan(KELVIN_HALF_ANGLE_DEG * PI_D / 180.0) *
-                        (out->behind_m + 0.5 * d->hull_length_m) + d->beam_m;
+    out->ahead_m = 0.25 * d->hull_length_m;
+    out->span_m = out->ahead_m + 0.5 * d->hull_length_m + wake_behind(d);
+    out->u_offset = (out->ahead_m + d->hull_length_m) / out->span_m;
+    out->spread = 2.2 * tan(KELVIN_HALF_ANGLE_DEG * PI_D / 180.0);
+    /* 1.5 beams either side at the bow */
+    out->spread_offset = fmax(3.0 * d->beam_m / out->spread - out->ahead_m, 0.0) / out->span_m;
     size_t total = 0;
     int levels = 0;
     for (int lw = w, lh = h;; lw = lw > 1 ? lw / 2 : 1, lh = lh > 1 ? lh / 2 : 1) {
@@ -133,26 +136,28 @@ int kelvin_map_build(const struct kelvin_desc *d, int w, int h, struct kelvin_ma
         kelvin_map_free(out);
         return swell_fail(err, SWELL_E_NOMEM, "wake: no memory for a %dx%d map", w, h);
     }
-    /* level 0: moments over 3 x 3 samples per texel; the outermost texels still water */
-    double du = (out->ahead_m + out->behind_m) / w, dv = 2.0 * out->half_width_m / h;
+    /* level 0: moments over 2 x 2 samples per texel (the waves span 8 texels or more: the
+     * hull's filter); the outermost texels still water */
     double msq_max = 0.0;
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
             float *p = m + 4u * ((size_t)j * (size_t)w + (size_t)i);
             double acc[4] = { 0, 0, 0, 0 };
             if (i > 0 && j > 0 && i < w - 1 && j < h - 1)
-                for (int b = 0; b < 3; b++)
-                    for (int a = 0; a < 3; a++) {
+                for (int b = 0; b < 2; b++)
+                    for (int a = 0; a < 2; a++) {
                         struct kelvin_sample s;
-                        kelvin_eval(d, out->ahead_m - (i + (a + 0.5) / 3.0) * du,
-                                    -out->half_width_m + (j + (b + 0.5) / 3.0) * dv, &s);
+                        double x, y;
+                        kelvin_map_point(out, d->hull_length_m, (i + 0.25 + 0.5 * a) / w,
+                                         (j + 0.25 + 0.5 * b) / h, &x, &y);
+                        kelvin_eval(d, x, y, &s);
                         acc[0] += s.slope[0];
                         acc[1] += s.slope[1];
                         acc[2] += s.slope[0] * s.slope[0] + s.slope[1] * s.slope[1];
                         acc[3] += s.foam;
                     }
             for (int c = 0; c < 4; c++)
-                p[c] = (float)(acc[c] / 9.0);
+                p[c] = (float)(acc[c] / 4.0);
             msq_max = fmax(msq_max, p[2]);
         }
     /* the chain: box means of the moments */
@@ -184,6 +189,14 @@ int kelvin_map_build(const struct kelvin_desc *d, int w, int h, struct kelvin_ma
     }
     free(m);
     return 0;
+}
+
+void kelvin_map_point(const struct kelvin_map *m, double hull_length_m, double u, double v,
+                      double *x, double *y)
+{
+    double e = m->u_offset, r = u * (sqrt(1.0 + e) - sqrt(e)) + sqrt(e), p = r * r - e;
+    *x = 0.5 * hull_length_m + m->ahead_m - p * m->span_m;
+    *y = (v - 0.5) * m->spread * (p + m->spread_offset) * m->span_m;
 }
 
 void kelvin_map_free(struct kelvin_map *m)

@@ -16,7 +16,7 @@
  * Not in the papers, stated here: the source strength (a height of KELVIN_HEIGHT_COEF L Fr^2 for
  * the transverse wave one hull length behind the bow, Fr^2 = U^2 / (g L)); the hull's filter
  * of short waves, exp(-(k B / 4)^2) for beam B (a source of the beam's size makes no waves much
- * shorter than it); the near field faded in over half a hull length; and the foam: the stern's
+ * shorter than it); the near field faded in over a hull length; and the foam: the stern's
  * turbulent strip (the beam wide, slowly widening) and where the wake's slope exceeds a
  * breaking slope, both decaying with the time since the hull passed by Tessendorf et al. 2023's
  * half-life (eq. 7-8).
@@ -52,25 +52,36 @@ struct kelvin_sample {
 };
 void kelvin_eval(const struct kelvin_desc *d, double x, double y, struct kelvin_sample *out);
 
-/* The map: u from the map's front (x = ahead_m) back along the track to x = -behind_m, v from
- * y = -half_width_m to +half_width_m. RGBA8 per texel: R, G the mean slope (d/dx, d/dy) as
- * the byte 128 + 127 s / slope_scale; B the mean square slope |s|^2 / slope_scale^2 (with R, G the
- * slope variance within the texel, Bruneton §4.1); A the foam coverage. Its edges are the
- * still sea (slopes 0), so a clamped fetch beyond it adds nothing. Levels: a mip chain of box
- * means of the moments (each quantised from float means), level 0 a 3 x 3 supersampled box. */
+/* The map covers the wedge, finer near the hull: with X = hull/2 - x the distance behind the
+ * bow, P = (X + ahead_m) / span_m and Q = y / span_m (P in [0, 1]),
+ *     u = (sqrt(P + e) - sqrt(e)) / (sqrt(1 + e) - sqrt(e)),   v = 1/2 + Q / (spread (P + spread_offset)),
+ * e = u_offset, i.e. along the track the texels grow with the square root of the distance from
+ * a hull length before the map's front (a fifth of a metre at the bow of a 9 m hull at 5 m/s,
+ * 1.3 m at the map's end; no singular derivative for the fetch's LOD), across it the map spans
+ * spread / 2 (1.1 x tan 19.47 deg) of the distance from a point spread_offset span_m before the
+ * map's front (the hull's own width at the bow). RGBA8 per texel: R, G the mean slope (d/dx,
+ * d/dy) as the byte 128 + 127 s / slope_scale; B the mean square slope |s|^2 / slope_scale^2
+ * (with R, G the slope variance within the texel, Bruneton §4.1); A the foam coverage. Its
+ * edges are the still sea (slopes 0), so a clamped fetch beyond it adds nothing. Levels: a mip
+ * chain of box means of the moments in (u, v) (each quantised from float means), level 0 a
+ * 2 x 2 supersampled box. */
 #define KELVIN_MAP_LEVELS_MAX 16
 struct kelvin_map {
     int w, h, levels;
-    double ahead_m, behind_m, half_width_m;
+    double ahead_m, span_m;     /* the map's front before the bow, its length from there */
+    double u_offset, spread, spread_offset;
     double slope_scale;         /* the largest root mean square slope of a texel */
     uint8_t *rgba;              /* every level, level 0 first */
     size_t offset[KELVIN_MAP_LEVELS_MAX];   /* each level's first byte in rgba */
 };
 /* w x h texels (powers of two, 16..4096). The map's length: the wake's first 24 transverse
- * wavelengths (2 pi U^2 / g each), at least 6 hull lengths; its amplitude fades to 0 over its
- * last fifth. */
+ * wavelengths (2 pi U^2 / g each) behind the hull's middle, at least 6 hull lengths; the
+ * wake's amplitude fades to 0 over its last fifth. */
 int kelvin_map_build(const struct kelvin_desc *d, int w, int h, struct kelvin_map *out,
                      struct swell_err *err);
 void kelvin_map_free(struct kelvin_map *m);
+/* The hull-frame point (x, y) of map coordinates (u, v). */
+void kelvin_map_point(const struct kelvin_map *m, double hull_length_m, double u, double v,
+                      double *x, double *y);
 
 #endif

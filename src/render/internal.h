@@ -36,6 +36,7 @@ enum ocean_uniform {
     OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_REFL_TEX, OU_REFL_MAT,
     OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
     OU_REFL_LEVELS, OU_REFL_UP, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM,
+    OU_WAKE_WARP,
     OU_COUNT
 };
 
@@ -243,7 +244,10 @@ struct renderer {
     int wake_w, wake_h;               /* the map's texels (0: none built) */
     struct kelvin_desc wake_built;    /* the hull and speed the map was built for */
     struct renderer_wake wake;        /* where it is now */
-    double wake_ahead, wake_length, wake_half_width, wake_slope_scale;
+    double wake_front, wake_span;     /* kelvin.h's map: its front before the hull's middle */
+    double wake_spread;               /* kelvin.h's */
+    float wake_warp[4];               /* ocean.frag's: e, the u scale and offset, spread_offset */
+    double wake_slope_scale;
 };
 
 /* The first unit of the pattern slots' tables. */

@@ -6,7 +6,8 @@
  * and foam, a mip chain of box means. ocean.frag (SWELL_WAKE) reads it at the flat sea's point
  * under the pixel: gl_FragCoord to the sea plane is a projective map (the view ray met with
  * z = 0), and on to the hull's frame an affine one, so one 3 x 3 matrix (wake_mat) takes the
- * pixel to the map's uv times w. The fetch's implicit LOD is the right one here (the map's
+ * pixel to the hull-frame coordinates P, Q times w, which ocean.frag warps into the map's u, v
+ * (kelvin.h: finer near the hull). The fetch's implicit LOD is the right one here (the map's
  * coordinates are smooth over the screen, unlike the reflection map's), so distant wake
  * waves average out in the mean slope while their variance stays, as the patterns' do
  * (Bruneton §4.1). The slopes are rotated into the world's axes and added to the pixel's slope
@@ -24,20 +25,31 @@
 
 void wake_destroy(struct renderer *r)
 {
-    if (r->wake_w)
-        gpu_texture_destroy(r->gpu, &r->wake_tex);
-    r->wake_w = r->wake_h = 0;
+    gpu_texture_destroy(r->gpu, &r->wake_tex);
     gpu_texture_destroy(r->gpu, &r->wake_none);
+    r->wake_w = r->wake_h = 0;
 }
 
-/* The 1x1 still-water map a draw reads while no wake is set. */
+static int map_levels(void)
+{
+    int levels = 1;
+    while ((WAKE_MAP_W >> levels) || (WAKE_MAP_H >> levels))
+        levels++;
+    return levels;
+}
+
+/* The map's texture, allocated here so the budget counts it from the start, and the 1x1
+ * still-water map a draw reads while no wake is set. */
 int wake_create(struct renderer *r, struct swell_err *err)
 {
     static const uint8_t still[4] = { 128, 128, 0, 0 };
     if (!r->d.wakes)
         return 0;
     glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_WAKE_OF(r->d.reflections)));
-    int rc = gpu_texture_create(r->gpu, 1, 1, 1, FORMAT_RGBA8, 0, "wake (none)", &r->wake_none,
+    int rc = gpu_texture_create(r->gpu, WAKE_MAP_W, WAKE_MAP_H, map_levels(), FORMAT_RGBA8, 0,
+                                "wake map", &r->wake_tex, err);
+    if (!rc)
+        rc = gpu_texture_create(r->gpu, 1, 1, 1, FORMAT_RGBA8, 0, "wake (none)", &r->wake_none,
                                 err);
     if (rc)
         return rc;
@@ -78,21 +90,18 @@ int renderer_set_wake(struct renderer *r, const struct renderer_wake *w, struct 
             return rc;
         glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first +
                                                UNIT_WAKE_OF(r->d.reflections)));
-        if (!r->wake_w) {
-            rc = gpu_texture_create(r->gpu, m.w, m.h, m.levels, FORMAT_RGBA8, 0, "wake map",
-                                    &r->wake_tex, err);
-            if (rc) {
-                kelvin_map_free(&m);
-                return rc;
-            }
-            r->wake_w = m.w;
-            r->wake_h = m.h;
-        }
         struct chain_tex c = { { r->wake_tex }, 0 };   /* one texture, its levels */
         rc = upload_chain(&c, m.w, m.h, m.levels, m.rgba, "renderer: wake map upload", err);
-        r->wake_ahead = m.ahead_m;
-        r->wake_length = m.ahead_m + m.behind_m;
-        r->wake_half_width = m.half_width_m;
+        r->wake_w = rc ? 0 : m.w;
+        r->wake_h = rc ? 0 : m.h;
+        r->wake_front = 0.5 * kd.hull_length_m + m.ahead_m;
+        r->wake_span = m.span_m;
+        double se = sqrt(m.u_offset), n = sqrt(1.0 + m.u_offset) - se;
+        r->wake_warp[0] = (float)m.u_offset;
+        r->wake_warp[1] = (float)(1.0 / n);
+        r->wake_warp[2] = (float)(-se / n);
+        r->wake_warp[3] = (float)m.spread_offset;
+        r->wake_spread = m.spread;
         r->wake_slope_scale = m.slope_scale;
         kelvin_map_free(&m);
         if (rc)
@@ -140,14 +149,15 @@ void wake_uniforms(const struct renderer *r, const struct camera_frame *view, co
                 d += (double)view->view_rel[i][k2] * e[k2][j];
             q[i][j] = i < 2 ? h * d : -d;
         }
-    /* -> the hull's frame and the map: u = (ahead - x) / length, v = (y + hw) / (2 hw), with
-     * x, y the point less the hull's position along f and l */
+    /* -> the hull's frame, x, y the point less the hull's position along f and l, and the
+     * map's P = (front - x) / span, Q = y / span (kelvin.h), Q over the spread: ocean.frag
+     * takes u, v from them */
     double cb[2] = { view->cam.pos[0] - r->wake.pos[0], view->cam.pos[1] - r->wake.pos[1] };
-    double len = r->wake_length > 0.0 ? r->wake_length : 1.0;
-    double hw = r->wake_half_width > 0.0 ? r->wake_half_width : 1.0;
+    double sp = r->wake_span > 0.0 ? r->wake_span : 1.0;
+    double spr = r->wake_spread > 0.0 ? r->wake_spread : 1.0;
     double aff[3][3] = {
-        { -f[0] / len, -f[1] / len, (r->wake_ahead - (cb[0] * f[0] + cb[1] * f[1])) / len },
-        { l[0] / (2.0 * hw), l[1] / (2.0 * hw), (hw + cb[0] * l[0] + cb[1] * l[1]) / (2.0 * hw) },
+        { -f[0] / sp, -f[1] / sp, (r->wake_front - (cb[0] * f[0] + cb[1] * f[1])) / sp },
+        { l[0] / (sp * spr), l[1] / (sp * spr), (cb[0] * l[0] + cb[1] * l[1]) / (sp * spr) },
         { 0.0, 0.0, 1.0 },
     };
     float mat[9];   /* column-major */
@@ -159,4 +169,5 @@ void wake_uniforms(const struct renderer *r, const struct camera_frame *view, co
             mat[3 * j + i] = (float)s;
         }
     glUniformMatrix3fv(u[OU_WAKE_MAT], 1, GL_FALSE, mat);
+    glUniform4fv(u[OU_WAKE_WARP], 1, r->wake_warp);
 }
