@@ -24,3 +24,4 @@ shot altitude_10km --preset moderate --camera 0,0,10000 --pitch -4 --sun 20,30
 shot nadir_3km     --preset moderate --camera 0,0,3000 --pitch -89 --sun 45,90
 shot orbit         --preset moderate --path orbit --sun 30,20
 shot boat          --boat 1.5,75 --preset calm --camera 0,0,3 --pitch -5 --sun 15,5 --time 3
+shot wake          --boat 5,60 --preset calm --camera -20,-30,14 --pitch -16 --heading 45 --sun 40,250
