@@ -10,6 +10,7 @@
 # Needs jq and gnuplot (Debian jq, gnuplot-nox), valgrind for the CPU count.
 #
 # Knobs (environment): BENCH_SCENES ("calm rough"), BENCH_PATHS ("surface 1km 10km"),
+# BENCH_BOAT (1: the boat scene beside its view of the open sea; 0: not),
 # BENCH_QUALITIES ("low high"), BENCH_TIERS ("gles2-min gles2-ext gles3"), BENCH_SIZE
 # (1280x720), BENCH_FRAMES (100; fewer is allowed for trying things out and is flagged in the
 # table), BENCH_WARMUP (10), BENCH_MINUTES (15: if the matrix is projected to take longer, the
@@ -36,6 +37,10 @@ frames=${BENCH_FRAMES:-100}
 warmup=${BENCH_WARMUP:-10}
 minutes=${BENCH_MINUTES:-15}
 use_callgrind=${BENCH_CALLGRIND:-1}
+# issue 18: the boat scene (the demo boat's wake, reflection pass and draw) beside the same
+# view of the open sea, on the first scene's tables; BENCH_BOAT=0 leaves it out
+boat=${BENCH_BOAT:-1}
+boat_view="--camera -20,-30,14 --pitch -16 --heading 45 --sun 40,250"
 cg_frames=${BENCH_CG_FRAMES:-4}
 cg_tiers=${BENCH_CG_TIERS:-$tiers}
 cg_paths=${BENCH_CG_PATHS:-$paths}
@@ -178,6 +183,25 @@ for s in $scenes; do for p in $paths; do for q in $qualities; do for t in $tiers
         warmup=2
     fi
 done; done; done; done; done
+# The boat: each quality x tier with and without it, the same fixed view (README's wake picture)
+if [ "$boat" != 0 ]; then
+    bs=$(set -- $scenes; echo "$1")
+    for q in $qualities; do for t in $tiers; do for with in 0 1; do
+        name="$bs-boatview-$q-$t$([ "$with" = 1 ] && echo "-boat")"
+        label="$bs$([ "$with" = 1 ] && echo "+boat" || echo " (boat view)")"
+        # shellcheck disable=SC2086
+        if "$swell" --platform surfaceless --size "$size" --tables "$out/tables/$bs" \
+            --scene "$label" $boat_view $([ "$with" = 1 ] && echo "--boat 5,60") \
+            --quality "$q" --tier "$t" --time 0 --fps 30 --bench --frames "$frames" \
+            --warmup "$warmup" --results "$out/scenes/$name.json" >"$out/logs/$name.log" 2>&1; then
+            grep '^swell: bench: ' "$out/logs/$name.log" | grep median | sed 's/^swell: //'
+        else
+            failed=$((failed + 1))
+            echo "bench: $name FAILED: $(tail -n 1 "$out/logs/$name.log")"
+        fi
+        done_n=$((done_n + 1))
+    done; done; done
+fi
 echo "bench: $done_n scenes in $(printf %.0f "$(calc "$(now) - $t_matrix")") s, $failed failed"
 
 # ---- CPU instructions per frame under callgrind ----------------------------------------------

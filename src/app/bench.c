@@ -247,7 +247,13 @@ static int scene_frame(const struct bench_desc *d, struct bench_counter *c, doub
             bench_counter_start(c);
         if (up)
             upscale_begin(up);
-        rc = renderer_frame(d->renderer, &cam, t, up ? up->w : w, up ? up->h : h, err);
+        int fw = up ? up->w : w, fh = up ? up->h : h;
+        if (d->before)
+            rc = d->before(d->ctx, &cam, t, fw, fh, err);
+        if (!rc)
+            rc = renderer_frame(d->renderer, &cam, t, fw, fh, err);
+        if (!rc && d->after)
+            rc = d->after(d->ctx, &cam, t, fw, fh, err);
         if (!rc && up)
             rc = upscale_end(up, err);
         if (c)
@@ -342,9 +348,13 @@ int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell
     out->bytes_streamed_per_frame = st.cpu_bytes_per_frame;
     out->vertices = st.vertices;
     out->triangles = st.triangles;
-    out->cpu_scope = "renderer_frame on the calling thread: grid projection and displacement, "
-                     "loop-frame blending and the GL calls (on a software GL the driver's vertex "
-                     "processing runs here too)";
+    out->cpu_scope = d->before || d->after
+        ? "renderer_frame and the application's work around it (the boat's wake, reflection "
+          "pass and draw) on the calling thread, with the GL calls (on a software GL the "
+          "driver's vertex processing runs here too)"
+        : "renderer_frame on the calling thread: grid projection and displacement, "
+          "loop-frame blending and the GL calls (on a software GL the driver's vertex "
+          "processing runs here too)";
     if (ctr.fd >= 0) {
         out->cpu_valid = 1;
         out->cpu_instructions_per_frame = (double)instr_sum / frames;

@@ -68,6 +68,14 @@ struct bench_desc {
     /* labels copied into the result */
     const char *scene, *quality, *geometry, *platform;
     const char *detile;             /* "on" | "off" (swell --detile); default "on" */
+    /* The application's own work in each timed frame, around renderer_frame (the demo boat:
+     * its wake and reflection pass before the sea, the boat after; swell.c), with the camera
+     * the sea is drawn with and the frame's size; NULL: none */
+    int (*before)(void *ctx, const struct camera *cam, double t, int w, int h,
+                  struct swell_err *err);
+    int (*after)(void *ctx, const struct camera *cam, double t, int w, int h,
+                 struct swell_err *err);
+    void *ctx;
 };
 
 struct bench_result {

@@ -113,14 +113,27 @@ static void sun_direction(float elev_deg, float azim_deg, float out[3])
     out[2] = (float)sin(e);
 }
 
-/* The demo boat in a frame (--boat): its pose on the sea at t, its wake (none below the
- * slowest speed a wake is drawn for) and its reflection pass (before the sea: the renderer
- * reads both), which the caller follows with the sea and then boat_draw. */
-static int boat_passes(struct renderer *r, struct boat *b, const struct swell_tables *tables,
-                       const struct renderer_view *v, double t, const float sun_dir[3],
+/* The demo boat in a frame (--boat): before the sea, its pose on the sea at t, its wake (none
+ * below the slowest speed a wake is drawn for) and its reflection pass (the renderer reads
+ * both); after the sea, the boat itself, depth-tested. bench.h's hooks take the same. */
+struct boat_scene {
+    struct renderer *r;
+    struct boat *boat;
+    const struct swell_tables *tables;
+    float sun_elev_deg, sun_azim_deg;
+    struct renderer_view view;        /* the frame's (boat_before) */
+};
+
+static int boat_before(void *ctx, const struct camera *cam, double t, int w, int h,
                        struct swell_err *err)
 {
-    boat_pose_at(b, tables, renderer_detile(r), t);
+    struct boat_scene *bs = ctx;
+    struct renderer *r = bs->r;
+    struct boat *b = bs->boat;
+    float sun_dir[3];
+    sun_direction(bs->sun_elev_deg, bs->sun_azim_deg, sun_dir);
+    renderer_frame_view(r, cam, w, h, &bs->view);
+    boat_pose_at(b, bs->tables, renderer_detile(r), t);
     const struct boat_pose *p = boat_pose(b);
     const struct boat_desc *bd = boat_get_desc(b);
     struct renderer_wake wk = {
@@ -130,6 +143,7 @@ static int boat_passes(struct renderer *r, struct boat *b, const struct swell_ta
     int rc = renderer_set_wake(r, bd->speed_mps >= KELVIN_MIN_SPEED_MPS ? &wk : NULL, err);
     if (rc)
         return rc;
+    const struct renderer_view *v = &bs->view;
     double dx = p->pos[0] - v->cam.pos[0], dy = p->pos[1] - v->cam.pos[1];
     struct renderer_reflection rr = { .distance_m = (float)sqrt(dx * dx + dy * dy) };
     struct renderer_pass pass;
@@ -138,6 +152,20 @@ static int boat_passes(struct renderer *r, struct boat *b, const struct swell_ta
     glEnable(GL_DEPTH_TEST);
     boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir);
     return renderer_reflection_end(r, err);
+}
+
+static int boat_after(void *ctx, const struct camera *cam, double t, int w, int h,
+                      struct swell_err *err)
+{
+    (void)t;
+    (void)err;
+    struct boat_scene *bs = ctx;
+    struct camera_frame cf;
+    float sun_dir[3];
+    sun_direction(bs->sun_elev_deg, bs->sun_azim_deg, sun_dir);
+    camera_frame_make(&bs->view.cam, w, h, &cf);
+    boat_draw(bs->boat, (const float *)cf.view_rel, (const float *)cf.proj, cam->pos, sun_dir);
+    return SWELL_OK;
 }
 
 static int run_frames(const struct options *o, struct platform_handle *ph, struct renderer *r,
@@ -230,21 +258,17 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (o->path > CAMERA_PATH_NONE)
             camera_path_at(o->path, t, &cam);
         int fw = up ? up->w : w, fh = up ? up->h : h;
-        struct renderer_view view;
-        float sun_dir[3];
-        renderer_frame_view(r, &cam, fw, fh, &view);
-        sun_direction(sun, o->sun_azim_deg, sun_dir);
         rc = ph->be->begin_frame(ph->p, err);
         if (!rc && up)
             upscale_begin(up);
+        struct boat_scene bs = { .r = r, .boat = boat, .tables = tables, .sun_elev_deg = sun,
+                                 .sun_azim_deg = o->sun_azim_deg };
         if (!rc && boat && boat_shown)
-            rc = boat_passes(r, boat, tables, &view, t, sun_dir, err);
+            rc = boat_before(&bs, &cam, t, fw, fh, err);
         if (!rc)
             rc = renderer_frame(r, &cam, t, fw, fh, err);
         if (!rc && boat && boat_shown) {
-            struct camera_frame cf;
-            camera_frame_make(&view.cam, fw, fh, &cf);
-            boat_draw(boat, (const float *)cf.view_rel, (const float *)cf.proj, cam.pos, sun_dir);
+            rc = boat_after(&bs, &cam, t, fw, fh, err);
             if (o->verbose) {
                 const struct boat_pose *bp = boat_pose(boat);
                 printf("swell: frame %d: boat at (%.1f, %.1f), heave %.2f m, pitch %.1f deg, "
@@ -296,10 +320,15 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
     return rc;
 }
 
-/* --bench: bench.c runs the frames; this prints the one-line summary and writes --results. */
+/* --bench: bench.c runs the frames (with the boat's work in each, --boat); this prints the
+ * one-line summary and writes --results. */
 static int run_bench(const struct options *o, struct platform_handle *ph, struct gpu *g,
-                     struct renderer *r, struct upscale *up, struct swell_err *err)
+                     struct renderer *r, struct upscale *up, const struct swell_tables *tables,
+                     struct boat *boat, struct swell_err *err)
 {
+    struct boat_scene bs = { .r = r, .boat = boat, .tables = tables,
+                             .sun_elev_deg = o->sun_elev_deg > 0.0f ? o->sun_elev_deg : 30.0f,
+                             .sun_azim_deg = o->sun_azim_deg };
     struct bench_desc bd = {
         .ph = ph, .renderer = r, .gpu = g, .upscale = up, .camera = o->camera, .path = o->path,
         .time0_s = o->time0_s, .step_s = 1.0 / (o->fps > 0 ? o->fps : DEFAULT_FPS),
@@ -308,6 +337,7 @@ static int run_bench(const struct options *o, struct platform_handle *ph, struct
         .scene = o->scene ? o->scene : o->tables_dir ? o->tables_dir : "baked in memory",
         .quality = render_quality_name(o->quality), .geometry = geometry_kind_name(o->geometry),
         .detile = renderer_detile(r) ? "on" : "off",
+        .before = boat ? boat_before : NULL, .after = boat ? boat_after : NULL, .ctx = &bs,
     };
     struct bench_result res;
     int rc = bench_run(&bd, &res, err);
@@ -423,7 +453,7 @@ int main(int argc, char **argv)
             goto fail_upscale;
     }
     print_start(&o, &ph, &gpu, &tables, r, up);
-    if (o.bench ? run_bench(&o, &ph, &gpu, r, up, &err)
+    if (o.bench ? run_bench(&o, &ph, &gpu, r, up, &tables, boat, &err)
                 : run_frames(&o, &ph, r, up, ph.be == &platform_kms_backend, &tables, boat,
                              &err))
         goto fail_boat;
