@@ -171,6 +171,10 @@ typedef struct swell_ocean_desc {
     int wakes;                  /* 1: a moving hull leaves a Kelvin wake (swell_ocean_set_wake):
                                  * one more texture unit and a 512 x 256 RGBA8 map with mipmaps
                                  * (683 KiB); default 0 */
+    int shadows;                /* 1: the application's objects shadow the sun on the sea
+                                 * (swell_ocean_begin_shadow): one more texture unit and a
+                                 * 512 x 512 RGBA8 target with mipmaps and 16-bit depth
+                                 * (1.8 MiB); default 0 */
 } swell_ocean_desc;
 
 /* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
@@ -246,6 +250,28 @@ SWELL_API int swell_ocean_begin_reflection(swell_ocean *ocean, const swell_view 
  * blurred by the waves as eq. 27 blurs the sky, and they hide the sun's glitter they stand in
  * front of); a draw with no pass before it reflects the sky alone. */
 SWELL_API int swell_ocean_end_reflection(swell_ocean *ocean, struct swell_err *err);
+
+/* ---- objects on the sea: the sun's shadows (Bruneton et al. 2010 §6) ------------------ */
+
+/* Begin drawing the objects that cast shadows on the sea into the shadow map of the next
+ * swell_ocean_draw (an ocean created with shadows = 1), as with a reflection pass: swell binds
+ * its target (cleared to transparent, depth to 1) and gives the sun's view of the sea around
+ * view's camera (an orthographic projection along the sun's rays; draw with it as with a
+ * swell_pass). Draw each caster with alpha 1, any colour; depth testing as you like. Where the
+ * map covers a point of the sea the sun's glitter is gone and the water and the foam are lit
+ * by the sky alone. */
+typedef struct swell_shadow_desc {
+    float distance_m;           /* the sea shadowed: a square this far either side of the
+                                 * point half of it ahead of the camera, m; 0 = 150 (the map's
+                                 * 512 texels over it: 0.6 m each) */
+    float caster_height_m;      /* the tallest caster above the sea, m; 0 = 30 */
+} swell_shadow_desc;
+SWELL_API int swell_ocean_begin_shadow(swell_ocean *ocean, const swell_view *view,
+                                       const swell_shadow_desc *desc, swell_pass *out,
+                                       struct swell_err *err);
+/* End the pass: builds the map's mipmaps and restores what begin found (as
+ * swell_ocean_end_reflection does). */
+SWELL_API int swell_ocean_end_shadow(swell_ocean *ocean, struct swell_err *err);
 
 /* ---- objects on the sea: the Kelvin wake (Bruneton et al. 2010 §6, local waves) -------- */
 

@@ -2,7 +2,8 @@
 // validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0 | FS_PATTERNS=2 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 |
 // validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_NO_DETILE | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_NO_DETILE | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_LINEAR_OUT |
 // validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT SWELL_LINEAR_OUT |
-// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_WAKE | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_WAKE SWELL_REFLECT | FS_PATTERNS=0 FS_WHITECAPS=0 SWELL_WAKE SWELL_RUN_LOD
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_WAKE | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_WAKE SWELL_REFLECT | FS_PATTERNS=0 FS_WHITECAPS=0 SWELL_WAKE SWELL_RUN_LOD |
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_SHADOW | FS_PATTERNS=1 FS_WHITECAPS=1 SWELL_SHADOW SWELL_WAKE SWELL_REFLECT
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
@@ -72,6 +73,13 @@ uniform vec4 wake_warp;             // (P, Q) -> the map's (u, v) (geometry/kelv
 uniform vec4 wake_rot;              // the map's R, G -> world slope: xy per R, zw per G...
 uniform vec3 wake_k;                // ...plus xy; z: B -> the mean square slope
 uniform vec3 wake_foam;             // low quality: the foam's radiance (x exposure)
+#endif
+#ifdef SWELL_SHADOW
+uniform sampler2D shadow_tex;       // the application's shadow casters seen from the sun: their
+                                    // coverage in alpha, mipmapped, clamped (shadow.c)
+uniform mat3 shadow_mat;            // gl_FragCoord -> the flat sea's point in the map, uv times w
+uniform vec3 shadow_sea;            // the sun's share of sea_radiance (x exposure)...
+uniform vec3 shadow_foam;           // ...and of the foam's radiance
 #endif
 #ifdef QUALITY_HIGH
 varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
@@ -428,6 +436,18 @@ vec4 wake_sample()
 }
 #endif
 
+#ifdef SWELL_SHADOW
+// How much of the sun the objects hide from the flat sea's point under the pixel (shadow.c);
+// outside the map and above the horizon (w <= 0) nothing.
+float shadow_at()
+{
+    vec3 h = shadow_mat * vec3(gl_FragCoord.xy, 1.0);
+    vec2 uv = h.xy / max(h.z, 1e-3);
+    vec2 in_uv = step(vec2(0.0), uv) * step(uv, vec2(1.0));
+    return step(0.0, h.z) * in_uv.x * in_uv.y * texture2D(shadow_tex, uv).a;
+}
+#endif
+
 void main()
 {
     g_ds = vec2(0.0);   // ds = s - s0: the patches' means are in s0 (ocean.vert)
@@ -517,8 +537,16 @@ void main()
     sun *= 1.0 - obj.a;
 #endif
 
+#ifdef SWELL_SHADOW
+    // in an object's shadow: no glitter, the water body lit by the sky alone
+    float shade = shadow_at();
+    sun *= 1.0 - shade;
+    vec3 sea_lit = sea_radiance - shade * shadow_sea;
+#else
+    vec3 sea_lit = sea_radiance;
+#endif
     // Refracted light, eq. 28.
-    vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_radiance;
+    vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_lit;
 
 #ifdef QUALITY_HIGH
     // Whitecaps: Dupuy eq. 6 coverage from the prefiltered moments of the foam memory (summed
@@ -544,7 +572,12 @@ void main()
     vec3 haze = haze_ray * v_extra.y + haze_mie * v_extra.x;
     // each channel's transmittance from green's: e^{-tau_c m} = T_g^(tau_c / tau_g)
     vec3 t = exp2(haze_tau_ratio * log2(max(v_extra.z, 1e-4)));
-    gl_FragColor = vec4(tone_map(mix(haze, mix(clear_sea, foam_radiance, cover), t)), 1.0);
+#ifdef SWELL_SHADOW
+    vec3 foam_lit = foam_radiance - shade * shadow_foam;
+#else
+    vec3 foam_lit = foam_radiance;
+#endif
+    gl_FragColor = vec4(tone_map(mix(haze, mix(clear_sea, foam_lit, cover), t)), 1.0);
 #else
     // Low quality: eq. 6's coverage and the haze per vertex (ocean.vert: foam and in-scattered
     // light, the clear sea's share).

@@ -55,7 +55,7 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .sun_azim_deg = d->sun_azim_deg, .detile = d->detile,
         .texture_unit_first = d->texture_unit_first, .texture_unit_count = d->texture_unit_count,
         .linear_output = d->linear_output, .reflections = d->reflections != 0,
-        .wakes = d->wakes != 0,
+        .wakes = d->wakes != 0, .shadows = d->shadows != 0,
     };
     struct gl_state st;
     o->unit0 = d->texture_unit_first;
@@ -145,6 +145,14 @@ int swell_ocean_draw(swell_ocean *o, const swell_view *v, double t_s, struct swe
     return rc;
 }
 
+static void pass_out(const struct renderer_pass *p, swell_pass *out)
+{
+    memcpy(out->camera_pos, p->camera_pos, sizeof out->camera_pos);
+    memcpy(out->view, p->view, sizeof out->view);
+    memcpy(out->proj, p->proj, sizeof out->proj);
+    memcpy(out->viewport, p->viewport, sizeof out->viewport);
+}
+
 int swell_ocean_begin_reflection(swell_ocean *o, const swell_view *v,
                                  const swell_reflection_desc *desc, swell_pass *out,
                                  struct swell_err *err)
@@ -162,23 +170,42 @@ int swell_ocean_begin_reflection(swell_ocean *o, const swell_view *v,
         rd.distance_m = desc->object_distance_m;
     if ((rc = renderer_reflection_begin(o->renderer, &rv, &rd, &p, err)))
         return rc;
-    memcpy(out->camera_pos, p.camera_pos, sizeof out->camera_pos);
-    memcpy(out->view, p.view, sizeof out->view);
-    memcpy(out->proj, p.proj, sizeof out->proj);
-    memcpy(out->viewport, p.viewport, sizeof out->viewport);
+    pass_out(&p, out);
     return SWELL_OK;
 }
 
-int swell_ocean_end_reflection(swell_ocean *o, struct swell_err *err)
+int swell_ocean_begin_shadow(swell_ocean *o, const swell_view *v, const swell_shadow_desc *desc,
+                             swell_pass *out, struct swell_err *err)
+{
+    if (!o || !v || !out)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_begin_shadow: ocean, view and out must "
+                          "not be NULL");
+    struct renderer_view rv;
+    int rc = renderer_view_of(v, 0.0, &rv, err);
+    if (rc)
+        return rc;
+    struct renderer_pass p;
+    struct renderer_shadow sd = { 0 };
+    if (desc) {
+        sd.distance_m = desc->distance_m;
+        sd.height_m = desc->caster_height_m;
+    }
+    if ((rc = renderer_shadow_begin(o->renderer, &rv, &sd, &p, err)))
+        return rc;
+    pass_out(&p, out);
+    return SWELL_OK;
+}
+
+/* A pass's end: what it changes besides the framebuffer, viewport, clear colour, depth mask
+ * and scissor (restored by the renderer's end, to begin's) restored as a draw restores it. */
+static int end_pass(swell_ocean *o, int (*end)(struct renderer *, struct swell_err *),
+                    const char *what, struct swell_err *err)
 {
     if (!o)
-        return swell_fail(err, SWELL_E_ARG, "swell_ocean_end_reflection: ocean is NULL");
-    /* the atlas's copy changes the program, buffers, attributes, blend, depth, cull and
-     * scissor: restored as a draw restores them; the framebuffer, viewport, clear colour and
-     * depth mask are begin's (renderer_reflection_end) */
+        return swell_fail(err, SWELL_E_ARG, "%s: ocean is NULL", what);
     struct gl_state st;
     save_state(o, &st);
-    int rc = renderer_reflection_end(o->renderer, err);
+    int rc = end(o->renderer, err);
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &st.framebuffer);
     glGetIntegerv(GL_VIEWPORT, st.viewport);
     glGetFloatv(GL_COLOR_CLEAR_VALUE, st.clear_color);
@@ -186,6 +213,16 @@ int swell_ocean_end_reflection(swell_ocean *o, struct swell_err *err)
     st.scissor_test = glIsEnabled(GL_SCISSOR_TEST);
     gl_state_restore(&st);
     return rc;
+}
+
+int swell_ocean_end_reflection(swell_ocean *o, struct swell_err *err)
+{
+    return end_pass(o, renderer_reflection_end, "swell_ocean_end_reflection", err);
+}
+
+int swell_ocean_end_shadow(swell_ocean *o, struct swell_err *err)
+{
+    return end_pass(o, renderer_shadow_end, "swell_ocean_end_shadow", err);
 }
 
 int swell_ocean_set_wake(swell_ocean *o, const swell_wake *w, struct swell_err *err)

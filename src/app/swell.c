@@ -114,8 +114,9 @@ static void sun_direction(float elev_deg, float azim_deg, float out[3])
 }
 
 /* The demo boat in a frame (--boat): before the sea, its pose on the sea at t, its wake (none
- * below the slowest speed a wake is drawn for) and its reflection pass (the renderer reads
- * both); after the sea, the boat itself, depth-tested. bench.h's hooks take the same. */
+ * below the slowest speed a wake is drawn for), its reflection pass and its shadow pass (the
+ * renderer reads them); after the sea, the boat itself, depth-tested. bench.h's hooks take the
+ * same. */
 struct boat_scene {
     struct renderer *r;
     struct boat *boat;
@@ -151,7 +152,13 @@ static int boat_before(void *ctx, const struct camera *cam, double t, int w, int
         return rc;
     glEnable(GL_DEPTH_TEST);
     boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir);
-    return renderer_reflection_end(r, err);
+    if ((rc = renderer_reflection_end(r, err)))
+        return rc;
+    struct renderer_shadow sh = { .distance_m = (float)fmax(2.0 * rr.distance_m, 60.0) };
+    if ((rc = renderer_shadow_begin(r, v, &sh, &pass, err)))
+        return rc;
+    boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir);
+    return renderer_shadow_end(r, err);
 }
 
 static int boat_after(void *ctx, const struct camera *cam, double t, int w, int h,
@@ -420,7 +427,7 @@ int main(int argc, char **argv)
         .sun_elev_deg = o.sun_elev_deg, .sun_azim_deg = o.sun_azim_deg,
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
         .debug_variants = o.debug_variants,
-        .detile = o.detile, .reflections = o.boat, .wakes = o.boat,
+        .detile = o.detile, .reflections = o.boat, .wakes = o.boat, .shadows = o.boat,
     };
     rc = renderer_open(&rd, &gpu, o.tier, budget, note_fallback, NULL, &r, &err);
     o.quality = rd.quality;

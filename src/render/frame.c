@@ -12,16 +12,45 @@
 /* The light the sea reflects and refracts, radiances times the exposure (tone_map in
  * common.glsl takes them so): the sun's irradiance, eq. 28's water body L_sea and the
  * Lambertian 0.4 foam (Dupuy §2), both lit by sun and sky: E, the irradiance on the level
- * sea, the sun's times sin(elevation) plus the sky's. */
-static void sea_light(const struct renderer *r, float sun[3], float sea[3], float foam[3])
+ * sea, the sun's times sin(elevation) plus the sky's; and the sun's shares of the last two
+ * (what a shadow takes away, shadow.c). */
+static void sea_light(const struct renderer *r, float sun[3], float sea[3], float foam[3],
+                      float sea_sun[3], float foam_sun[3])
 {
     float e = r->exposure;
     for (int c = 0; c < 3; c++) {
-        float lit = r->sky.sun_irr[c] * fmaxf(r->sky.sun_dir[2], 0.0f) + r->sky.sky_irr[c];
+        float direct = r->sky.sun_irr[c] * fmaxf(r->sky.sun_dir[2], 0.0f);
+        float lit = direct + r->sky.sky_irr[c];
         sun[c] = r->d.no_sun ? 0.0f : e * r->sky.sun_irr[c];
         sea[c] = e * r->water_albedo[c] * lit / (float)M_PI;
         foam[c] = e * 0.4f * lit / (float)M_PI;
+        sea_sun[c] = e * r->water_albedo[c] * direct / (float)M_PI;
+        foam_sun[c] = e * 0.4f * direct / (float)M_PI;
     }
+}
+
+/* gl_FragCoord (fx, fy, 1) -> the flat sea's point (z = 0) under the pixel, relative to the
+ * camera and homogeneous: (h d_x, h d_y, -d_z) with d the view ray in the world and h the
+ * camera's height; its w > 0 below the horizon. For a symmetric perspective (the wake's and
+ * the shadow's lookups: wake.c, shadow.c). */
+void screen_to_sea(const struct camera_frame *view, double q[3][3])
+{
+    double h = view->cam.pos[2] > 0.01 ? view->cam.pos[2] : 0.01;
+    double p0 = view->proj[0][0], p1 = view->proj[1][1];
+    /* the eye-frame ray e = E (fx, fy, 1) */
+    double e[3][3] = {
+        { 2.0 / (view->width * p0), 0.0, -(1.0 + 2.0 * view->x / view->width) / p0 },
+        { 0.0, 2.0 / (view->height * p1), -(1.0 + 2.0 * view->y / view->height) / p1 },
+        { 0.0, 0.0, -1.0 },
+    };
+    /* d = R^T e, R the view's rotation (view_rel, [col][row]) */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double d = 0.0;
+            for (int k = 0; k < 3; k++)
+                d += (double)view->view_rel[i][k] * e[k][j];
+            q[i][j] = i < 2 ? h * d : -d;
+        }
 }
 
 static void set_vtf_uniforms(struct renderer *r, int variant, const struct camera *cam)
@@ -164,7 +193,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     float ws[SWELL_MAX_PATTERNS][4] = { { 0 } }, wb[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float cs[4] = { 0.0f, 0.0f, 0.0f, 0.0f }, ck[2] = { 0.0f, 0.0f };
     float dsh[SWELL_MAX_PATTERNS][3] = { { 0 } };
-    float sun[3], sea[3], foam[3], e = r->exposure;
+    float sun[3], sea[3], foam[3], sea_sun[3], foam_sun[3], e = r->exposure;
     float unres[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
     for (int s = 0; s < r->nfs; s++) {
         struct fs_slot *sl = &r->slot[s];
@@ -200,7 +229,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
             add_k_constants(r, sl, ck);
         }
     }
-    sea_light(r, sun, sea, foam);
+    sea_light(r, sun, sea, foam, sea_sun, foam_sun);
     glUniformMatrix4fv(u[OU_WORLD_TO_CLIP], 1, GL_FALSE, (const GLfloat *)view->world_to_clip);
     glUniform2fv(u[OU_UV_OFFSET], SWELL_MAX_PATTERNS, &off[0][0]);
     glUniform1fv(u[OU_INV_SIZE], SWELL_MAX_PATTERNS, inv);
@@ -248,6 +277,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform2fv(u[OU_TOTAL_VAR], 1, r->vf.total_var);
     reflect_uniforms(r, u);
     wake_uniforms(r, view, u, foam);
+    shadow_uniforms(r, view, u, sea_sun, foam_sun);
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
@@ -463,7 +493,7 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
             glBlendFunc(GL_ZERO, GL_CONSTANT_COLOR);
         }
         draw_runs(r, &view);
-        r->refl_ready = 0;   /* a pass serves the draw after it */
+        r->refl_ready = r->shadow_ready = 0;   /* a pass serves the draw after it */
         glDisable(GL_BLEND);
         for (int a = 0; a < A_COUNT; a++)
             glDisableVertexAttribArray((GLuint)a);

@@ -36,7 +36,7 @@ enum ocean_uniform {
     OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_REFL_TEX, OU_REFL_MAT,
     OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
     OU_REFL_LEVELS, OU_REFL_UP, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM,
-    OU_WAKE_WARP,
+    OU_WAKE_WARP, OU_SHADOW_TEX, OU_SHADOW_MAT, OU_SHADOW_SEA, OU_SHADOW_FOAM,
     OU_COUNT
 };
 
@@ -109,12 +109,26 @@ enum vtf_uniform {
     VU_DETILE_ATLAS, VU_DISP_CELL, VU_COUNT
 };
 
+/* A target the application draws a pass into (pass.c): RGBA8 colour with its mip chain and
+ * 16-bit depth; and the application's GL state a pass changes, saved at its begin. */
+struct pass_target {
+    GLuint fbo, tex, depth;
+    int w, h, levels;
+};
+struct pass_saved {
+    GLint fbo, viewport[4], front, active;
+    GLfloat clear[4];
+    GLboolean depth_mask, scissor;
+};
+
 /* Texture units: 0 Fresnel, 1 sky, 2 the reflection map where renderer_desc reflections asks
- * for one (reflect.c), then the wake's map where wakes asks (wake.c), then slope/whitecap per
- * fragment pattern slot (unit_patterns). */
+ * for one (reflect.c), then the wake's map where wakes asks (wake.c), the shadow map where
+ * shadows asks (shadow.c), then slope/whitecap per fragment pattern slot (unit_patterns). */
 enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_REFLECT = 2 };
 #define UNIT_WAKE_OF(reflections) (2 + ((reflections) != 0))
-#define UNIT_PATTERNS_OF(reflections, wakes) (UNIT_WAKE_OF(reflections) + ((wakes) != 0))
+#define UNIT_SHADOW_OF(reflections, wakes) (UNIT_WAKE_OF(reflections) + ((wakes) != 0))
+#define UNIT_PATTERNS_OF(reflections, wakes, shadows) \
+    (UNIT_SHADOW_OF(reflections, wakes) + ((shadows) != 0))
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
 #define VAR_KNOTS 4                   /* low quality's pixel variance per run (pixel_var_at) */
@@ -220,12 +234,11 @@ struct renderer {
     int detile_refused;               /* > 0: --detile auto turned the lattice off, with which
                                        * the probe found this many refused (renderer_create) */
     /* Local reflections (reflect.c, renderer_desc reflections) */
-    GLuint refl_fbo, refl_tex, refl_depth;  /* the target the application draws into */
+    struct pass_target refl;          /* the target the application draws into */
     GLuint refl_none;                 /* 1x1 transparent: a draw with no pass before it */
     GLuint refl_atlas, refl_atlas_fbo;  /* the map's levels side by side, no mips (w x 2h) */
     struct shader_program refl_copy;  /* upscale.vert/.frag: the atlas's copy */
     GLint refl_copy_tex;
-    int refl_w, refl_h, refl_levels;
     int refl_active;                  /* between renderer_reflection_begin and _end */
     int refl_ready;                   /* a pass ended since the last draw */
     float refl_mat[9];                /* reflected ray -> map uv times w (ocean.frag) */
@@ -234,9 +247,7 @@ struct renderer {
     float refl_down[4];               /* world -z in the eye frame; camera height / distance */
     float refl_blur;                  /* eq. 27's footprint per unit sigma, log2 texels */
     float refl_up[2];                 /* the map's vertical, a texel long in uv */
-    GLint refl_prev_fbo, refl_prev_viewport[4], refl_prev_front, refl_prev_active;
-    GLfloat refl_prev_clear[4];
-    GLboolean refl_prev_depth_mask, refl_prev_scissor;
+    struct pass_saved refl_saved;     /* the application's state at begin */
     /* The Kelvin wake (wake.c, renderer_desc wakes) */
     GLuint wake_tex;                  /* kelvin.h's map, mipmapped, clamped */
     GLuint wake_none;                 /* 1x1 still water: no wake set */
@@ -248,12 +259,18 @@ struct renderer {
     double wake_spread;               /* kelvin.h's */
     float wake_warp[4];               /* ocean.frag's: e, the u scale and offset, spread_offset */
     double wake_slope_scale;
+    /* Sun shadows (shadow.c, renderer_desc shadows) */
+    struct pass_target shadow;        /* the sun's view the application draws casters into */
+    GLuint shadow_none;               /* 1x1 transparent: a draw with no pass before it */
+    int shadow_active, shadow_ready;  /* as refl_active, refl_ready */
+    double shadow_aff[3][3];          /* the camera-relative sea point -> the map's uv */
+    struct pass_saved shadow_saved;
 };
 
 /* The first unit of the pattern slots' tables. */
 static inline int unit_patterns(const struct renderer *r)
 {
-    return UNIT_PATTERNS_OF(r->d.reflections, r->d.wakes);
+    return UNIT_PATTERNS_OF(r->d.reflections, r->d.wakes, r->d.shadows);
 }
 
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
@@ -312,6 +329,21 @@ int reflect_create(struct renderer *r, struct swell_err *err);
 void reflect_destroy(struct renderer *r);
 void reflect_uniforms(const struct renderer *r, const GLint *u);
 
+/* pass.c */
+int  pass_target_create(struct renderer *r, struct pass_target *t, int w, int h, int unit,
+                        const char *what, struct swell_err *err);
+void pass_target_destroy(struct renderer *r, struct pass_target *t);
+void pass_target_bind(const struct pass_target *t);
+void pass_save(struct pass_saved *s);
+void pass_restore(const struct pass_saved *s);
+int  pass_none_create(struct renderer *r, GLuint *tex, const char *what, struct swell_err *err);
+
+/* shadow.c */
+int  shadow_create(struct renderer *r, struct swell_err *err);
+void shadow_destroy(struct renderer *r);
+void shadow_uniforms(const struct renderer *r, const struct camera_frame *view, const GLint *u,
+                     const float sea_sun[3], const float foam_sun[3]);
+
 /* wake.c */
 int wake_create(struct renderer *r, struct swell_err *err);
 void wake_destroy(struct renderer *r);
@@ -319,6 +351,7 @@ void wake_uniforms(const struct renderer *r, const struct camera_frame *view, co
                    const float foam[3]);
 
 /* frame.c */
+void screen_to_sea(const struct camera_frame *view, double q[3][3]);
 void renderer_view_frame(const struct renderer_view *v, const struct camera *cam,
                          struct camera_frame *view);
 

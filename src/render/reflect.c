@@ -37,31 +37,21 @@ static int pot_floor(int n)
     return p;
 }
 
-/* The target's colour with its mips (4/3), its 16-bit depth and the atlas of its levels
- * (w x 2h). */
-static uint64_t target_bytes(int w, int h)
+/* The atlas of the map's levels (w x 2h RGBA8), the renderer's share. */
+static uint64_t atlas_bytes(int w, int h)
 {
-    uint64_t n = (uint64_t)w * (uint64_t)h;
-    return n * 16u / 3u + n * 2u + n * 8u;
+    return (uint64_t)w * (uint64_t)h * 8u;
 }
 
 static void release_target(struct renderer *r)
 {
-    if (r->refl_w)
-        r->gpu_bytes -= target_bytes(r->refl_w, r->refl_h);
+    if (r->refl.w)
+        r->gpu_bytes -= atlas_bytes(r->refl.w, r->refl.h);
     if (r->refl_atlas_fbo)
         glDeleteFramebuffers(1, &r->refl_atlas_fbo);
     r->refl_atlas_fbo = 0;
     gpu_texture_destroy(r->gpu, &r->refl_atlas);
-    if (r->refl_fbo)
-        glDeleteFramebuffers(1, &r->refl_fbo);
-    if (r->refl_depth) {
-        glDeleteRenderbuffers(1, &r->refl_depth);
-        gpu_release(r->gpu, (uint64_t)r->refl_w * (uint64_t)r->refl_h * 2u);
-    }
-    gpu_texture_destroy(r->gpu, &r->refl_tex);
-    r->refl_fbo = r->refl_depth = 0;
-    r->refl_w = r->refl_h = 0;
+    pass_target_destroy(r, &r->refl);
 }
 
 void reflect_destroy(struct renderer *r)
@@ -74,7 +64,6 @@ void reflect_destroy(struct renderer *r)
 /* The 1x1 transparent map a draw reads when no pass was drawn for it. */
 int reflect_create(struct renderer *r, struct swell_err *err)
 {
-    static const uint8_t clear[4] = { 0, 0, 0, 0 };
     static const char *const names[1] = { "frame_tex" };
     static const struct shader_attrib attribs[1] = { { "a_ndc", 0 } };
     if (!r->d.reflections)
@@ -88,11 +77,7 @@ int reflect_create(struct renderer *r, struct swell_err *err)
     int rc = shader_program_build(&sd, &r->refl_copy, err);
     if (rc)
         return rc;
-    rc = gpu_texture_create(r->gpu, 1, 1, 1, FORMAT_RGBA8, 0, "reflection (none)",
-                            &r->refl_none, err);
-    if (rc)
-        return rc;
-    return upload_single(r->refl_none, 1, 1, clear, "reflection (none)", err);
+    return pass_none_create(r, &r->refl_none, "reflection (none)", err);
 }
 
 static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *err)
@@ -100,53 +85,28 @@ static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *e
     int w = pot_floor(vw / 2), h = pot_floor(vh / 2);
     w = w < REFLECT_MIN ? REFLECT_MIN : w > REFLECT_MAX ? REFLECT_MAX : w;
     h = h < REFLECT_MIN ? REFLECT_MIN : h > REFLECT_MAX ? REFLECT_MAX : h;
-    if (r->refl_fbo && w == r->refl_w && h == r->refl_h)
+    if (r->refl.fbo && w == r->refl.w && h == r->refl.h)
         return 0;
     release_target(r);
-    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
-    int levels = 1;
-    while ((w >> levels) || (h >> levels))
-        levels++;
-    int rc = gpu_texture_create(r->gpu, w, h, levels, FORMAT_RGBA8, 0, "reflection map",
-                                &r->refl_tex, err);
-    if (!rc)
-        rc = gpu_texture_create(r->gpu, w, 2 * h, 1, FORMAT_RGBA8, 0, "reflection atlas",
-                                &r->refl_atlas, err);
+    int rc = pass_target_create(r, &r->refl, w, h, UNIT_REFLECT, "reflection map", err);
+    if (rc)
+        return rc;
+    rc = gpu_texture_create(r->gpu, w, 2 * h, 1, FORMAT_RGBA8, 0, "reflection atlas",
+                            &r->refl_atlas, err);
     if (rc) {
-        gpu_texture_destroy(r->gpu, &r->refl_tex);
+        pass_target_destroy(r, &r->refl);
         return rc;
     }
-    uint64_t depth_bytes = (uint64_t)w * (uint64_t)h * 2u;
-    if ((rc = gpu_account(r->gpu, depth_bytes, "reflection depth", err))) {
-        gpu_texture_destroy(r->gpu, &r->refl_atlas);
-        gpu_texture_destroy(r->gpu, &r->refl_tex);
-        return rc;
-    }
-    r->refl_w = w;
-    r->refl_h = h;
-    r->refl_levels = levels;
-    r->gpu_bytes += target_bytes(w, h);
-    glGenRenderbuffers(1, &r->refl_depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, r->refl_depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
+    r->gpu_bytes += atlas_bytes(w, h);
     glGenFramebuffers(1, &r->refl_atlas_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, r->refl_atlas_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->refl_atlas,
                            0);
     GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (st == GL_FRAMEBUFFER_COMPLETE) {
-        glGenFramebuffers(1, &r->refl_fbo);
-        glBindFramebuffer(GL_FRAMEBUFFER, r->refl_fbo);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->refl_tex,
-                               0);
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                                  r->refl_depth);
-        st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    }
     if (st != GL_FRAMEBUFFER_COMPLETE) {
         release_target(r);
-        return swell_fail(err, SWELL_E_GL, "renderer: the reflection target %dx%d (RGBA8, 16-bit "
-                          "depth) is not complete on this device (status 0x%x)", w, h, st);
+        return swell_fail(err, SWELL_E_GL, "renderer: the reflection atlas %dx%d (RGBA8) is not "
+                          "complete on this device (status 0x%x)", w, 2 * h, st);
     }
     return gpu_check("renderer: reflection target", err);
 }
@@ -173,25 +133,17 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     if (!r->d.reflections)
         return swell_fail(err, SWELL_E_ARG, "renderer: no reflection target: create the ocean "
                           "with reflections = 1");
-    if (r->refl_active)
-        return swell_fail(err, SWELL_E_ARG, "renderer: a reflection pass is open already: end "
-                          "it first");
+    if (r->refl_active || r->shadow_active)
+        return swell_fail(err, SWELL_E_ARG, "renderer: a pass is open already: end it first");
     if (d && (!(d->distance_m >= 0.0f) || !isfinite(d->distance_m)))
         return swell_fail(err, SWELL_E_ARG, "renderer: the reflected objects' distance %g m "
                           "must be finite and >= 0 (0: far away)", (double)d->distance_m);
     struct camera_frame view;
     renderer_view_frame(v, &v->cam, &view);
-    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &r->refl_prev_fbo);
-    glGetIntegerv(GL_VIEWPORT, r->refl_prev_viewport);
-    glGetIntegerv(GL_FRONT_FACE, &r->refl_prev_front);
-    glGetFloatv(GL_COLOR_CLEAR_VALUE, r->refl_prev_clear);
-    glGetBooleanv(GL_DEPTH_WRITEMASK, &r->refl_prev_depth_mask);
-    glGetIntegerv(GL_ACTIVE_TEXTURE, &r->refl_prev_active);
-    r->refl_prev_scissor = glIsEnabled(GL_SCISSOR_TEST);
+    pass_save(&r->refl_saved);
     int rc = ensure_target(r, v->width, v->height, err);
-    if (rc) {   /* the application's binding and unit as they were */
-        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->refl_prev_fbo);
-        glActiveTexture((GLenum)r->refl_prev_active);
+    if (rc) {   /* the application's state as it was */
+        pass_restore(&r->refl_saved);
         return rc;
     }
 
@@ -214,8 +166,8 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
      * eye frame the plane's normal is V (0, 0, -1). */
     double plane[4] = { -vr[8], -vr[9], -vr[10], -cz };
     oblique_near(out->proj, plane);
-    out->viewport[2] = r->refl_w;
-    out->viewport[3] = r->refl_h;
+    out->viewport[2] = r->refl.w;
+    out->viewport[3] = r->refl.h;
 
     /* ocean.frag: the reflected ray r, mirrored (S r), in the eye frame (V), to the map's uv
      * times w: u w = (P00 / m e_x - e_z) / 2, v w = (P11 / m e_y - e_z) / 2, w = -e_z */
@@ -230,7 +182,7 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
      * 2 sigma, and the footprint spans twice that, 4 sigma rad; a radian is P11 h / 2 of the
      * map's texels at its centre (P11 the pass's, h the map's): the level is log2(2 P11 h) +
      * log2(sigma) */
-    float blur = log2f(2.0f * out->proj[5] * (float)r->refl_h);
+    float blur = log2f(2.0f * out->proj[5] * (float)r->refl.h);
     /* gl_FragCoord to the flat sea's map uv, 0.5 + ndc / (2 m) */
     r->refl_screen[0] = 1.0f / ((float)v->width * REFLECT_MARGIN);
     r->refl_screen[1] = 1.0f / ((float)v->height * REFLECT_MARGIN);
@@ -250,21 +202,16 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     r->refl_blur = blur;
     /* the map's vertical: world z in the eye frame, projected at the map's centre, one texel
      * long in uv (rolled views turn it) */
-    float tx = vr[8] * out->proj[0] * (float)r->refl_w, ty = vr[9] * out->proj[5] * (float)r->refl_h;
+    float tx = vr[8] * out->proj[0] * (float)r->refl.w, ty = vr[9] * out->proj[5] * (float)r->refl.h;
     float tl = sqrtf(tx * tx + ty * ty);
     if (!(tl > 0.0f)) {
         tx = 0.0f;
         ty = tl = 1.0f;
     }
-    r->refl_up[0] = tx / tl / (float)r->refl_w;
-    r->refl_up[1] = ty / tl / (float)r->refl_h;
+    r->refl_up[0] = tx / tl / (float)r->refl.w;
+    r->refl_up[1] = ty / tl / (float)r->refl.h;
 
-    glBindFramebuffer(GL_FRAMEBUFFER, r->refl_fbo);
-    glViewport(0, 0, r->refl_w, r->refl_h);
-    glDisable(GL_SCISSOR_TEST);
-    glDepthMask(GL_TRUE);
-    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    pass_target_bind(&r->refl);
     glFrontFace(GL_CW);   /* the mirror turns every triangle's winding */
     r->refl_active = 1;
     r->refl_ready = 0;
@@ -283,7 +230,7 @@ int renderer_reflection_end(struct renderer *r, struct swell_err *err)
      * application's may hold (program, buffer, attribute 0, blend, depth, cull, the unit's
      * binding) is the caller's to restore (api_ocean.c). */
     glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
-    glBindTexture(GL_TEXTURE_2D, r->refl_tex);
+    glBindTexture(GL_TEXTURE_2D, r->refl.tex);
     glGenerateMipmap(GL_TEXTURE_2D);
     glBindFramebuffer(GL_FRAMEBUFFER, r->refl_atlas_fbo);
     glDisable(GL_BLEND);
@@ -295,24 +242,15 @@ int renderer_reflection_end(struct renderer *r, struct swell_err *err)
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    for (int l = 0; l < r->refl_levels; l++) {
-        int lw = r->refl_w >> l > 0 ? r->refl_w >> l : 1;
-        int lh = r->refl_h >> l > 0 ? r->refl_h >> l : 1;
-        int x = l == 0 ? 0 : r->refl_w - (r->refl_w >> (l - 1));
-        glViewport(x, l == 0 ? 0 : r->refl_h, lw, lh);
+    for (int l = 0; l < r->refl.levels; l++) {
+        int lw = r->refl.w >> l > 0 ? r->refl.w >> l : 1;
+        int lh = r->refl.h >> l > 0 ? r->refl.h >> l : 1;
+        int x = l == 0 ? 0 : r->refl.w - (r->refl.w >> (l - 1));
+        glViewport(x, l == 0 ? 0 : r->refl.h, lw, lh);
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     }
     glDisableVertexAttribArray(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->refl_prev_fbo);
-    glViewport(r->refl_prev_viewport[0], r->refl_prev_viewport[1], r->refl_prev_viewport[2],
-               r->refl_prev_viewport[3]);
-    glFrontFace((GLenum)r->refl_prev_front);
-    glActiveTexture((GLenum)r->refl_prev_active);
-    glClearColor(r->refl_prev_clear[0], r->refl_prev_clear[1], r->refl_prev_clear[2],
-                 r->refl_prev_clear[3]);
-    glDepthMask(r->refl_prev_depth_mask);
-    if (r->refl_prev_scissor)
-        glEnable(GL_SCISSOR_TEST);
+    pass_restore(&r->refl_saved);
     r->refl_ready = 1;
     return gpu_check("renderer: reflection pass end", err);
 }
@@ -330,6 +268,6 @@ void reflect_uniforms(const struct renderer *r, const GLint *u)
     glUniform4fv(u[OU_REFL_DOWN], 1, r->refl_down);
     glUniform1f(u[OU_REFL_BLUR], r->refl_blur);
     glUniform2fv(u[OU_REFL_UP], 1, r->refl_up);
-    glUniform3f(u[OU_REFL_LEVELS], (float)(r->refl_levels - 1), 1.0f / (float)r->refl_w,
-                1.0f / (float)r->refl_h);
+    glUniform3f(u[OU_REFL_LEVELS], (float)(r->refl.levels - 1), 1.0f / (float)r->refl.w,
+                1.0f / (float)r->refl.h);
 }

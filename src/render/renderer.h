@@ -76,6 +76,9 @@ struct renderer_desc {
                                          * (renderer_reflection_begin); default 0: the sky alone */
     int wakes;                          /* 1: a Kelvin wake behind a moving hull (wake.c): a
                                          * texture unit, renderer_set_wake; default 0 */
+    int shadows;                        /* 1: the sun's shadows of the application's objects
+                                         * (shadow.c): a texture unit, a 512^2 target,
+                                         * renderer_shadow_begin; default 0 */
     int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
                                          * naming the ocean program it is drawn with, no sky
                                          * (white): the screen's share of each program
@@ -174,6 +177,22 @@ int  renderer_reflection_begin(struct renderer *r, const struct renderer_view *v
                                const struct renderer_reflection *d, struct renderer_pass *out,
                                struct swell_err *err);
 int  renderer_reflection_end(struct renderer *r, struct swell_err *err);
+/* Sun shadows (renderer_desc shadows; Bruneton 2010 §6, Hu 2006 §2.2): begin binds the shadow
+ * target (colour cleared to 0, depth to 1) and gives the sun's view of the sea around the
+ * camera: an orthographic projection along the sun's rays over a square of distance_m either
+ * side of the point half of it ahead of the camera, objects up to height_m tall. The
+ * application draws the objects that cast shadows with it, alpha 1 (any colour); end builds
+ * the map's mipmaps and restores the state begin found. The next draw takes the sun's glitter
+ * and the sun's share of the water body's and (high quality) the foam's light away where the
+ * map covers the sea; later draws only after another pass. */
+struct renderer_shadow {
+    float distance_m;                   /* 0: 150 */
+    float height_m;                     /* 0: 30 */
+};
+int  renderer_shadow_begin(struct renderer *r, const struct renderer_view *v,
+                           const struct renderer_shadow *d, struct renderer_pass *out,
+                           struct swell_err *err);
+int  renderer_shadow_end(struct renderer *r, struct swell_err *err);
 /* The Kelvin wake (renderer_desc wakes; geometry/kelvin.h; Bruneton 2010 §6): a hull at pos
  * (world, m; its middle on the water line) sailing along heading_deg (CCW from +x) at
  * speed_mps leaves a wake whose slopes, slope variance and foam the next draws add to the

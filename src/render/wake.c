@@ -122,7 +122,6 @@ void wake_uniforms(const struct renderer *r, const struct camera_frame *view, co
     int on = r->wake_on && r->wake_w;
     bind_tex(r, UNIT_WAKE_OF(r->d.reflections), on ? r->wake_tex : r->wake_none, u[OU_WAKE_TEX]);
     glUniform3fv(u[OU_WAKE_FOAM], 1, foam);
-    double h = view->cam.pos[2] > 0.01 ? view->cam.pos[2] : 0.01;
     double hd = r->wake.heading_deg * M_PI / 180.0;
     double f[2] = { cos(hd), sin(hd) }, l[2] = { -f[1], f[0] };
     double sc = on ? r->wake_slope_scale : 0.0;
@@ -132,23 +131,9 @@ void wake_uniforms(const struct renderer *r, const struct camera_frame *view, co
     float k[3] = { (float)(-c * (f[0] + l[0])), (float)(-c * (f[1] + l[1])), (float)(sc * sc) };
     glUniform4fv(u[OU_WAKE_ROT], 1, rot);
     glUniform3fv(u[OU_WAKE_K], 1, k);
-    /* gl_FragCoord -> the eye-frame ray e = E (fx, fy, 1) (a symmetric perspective) */
-    double p0 = view->proj[0][0], p1 = view->proj[1][1];
-    double e[3][3] = {
-        { 2.0 / (view->width * p0), 0.0, -(1.0 + 2.0 * view->x / view->width) / p0 },
-        { 0.0, 2.0 / (view->height * p1), -(1.0 + 2.0 * view->y / view->height) / p1 },
-        { 0.0, 0.0, -1.0 },
-    };
-    /* -> the world direction d = R^T e (R = view_rel's rotation, [col][row]) -> the flat sea's
-     * point relative to the camera, homogeneous: (h d_x, h d_y, -d_z) */
+    /* gl_FragCoord -> the flat sea's point (frame.c) */
     double q[3][3];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double d = 0.0;
-            for (int k2 = 0; k2 < 3; k2++)
-                d += (double)view->view_rel[i][k2] * e[k2][j];
-            q[i][j] = i < 2 ? h * d : -d;
-        }
+    screen_to_sea(view, q);
     /* -> the hull's frame, x, y the point less the hull's position along f and l, and the
      * map's P = (front - x) / span, Q = y / span (kelvin.h), Q over the spread: ocean.frag
      * takes u, v from them */

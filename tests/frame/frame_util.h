@@ -91,6 +91,41 @@ static inline GLuint frame_flat_program(float r, float g, float b)
     return ok ? p : 0;
 }
 
+/* out = a b, 4 x 4 column-major. */
+static inline void frame_mat_mul(const float a[16], const float b[16], float out[16])
+{
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            float acc = 0.0f;
+            for (int k = 0; k < 4; k++)
+                acc += a[4 * k + r] * b[4 * c + k];
+            out[4 * c + r] = acc;
+        }
+}
+
+/* An application's object: the quad of corners c (world, m; a triangle strip's order) drawn
+ * with program prog (frame_flat_program) by view and proj relative to eye, as an application
+ * draws (positions less the eye in double), depth-tested. */
+static inline void frame_draw_quad(GLuint prog, const float view[16], const float proj[16],
+                                   const double eye[3], const double c[4][3])
+{
+    float mvp[16], v[12];
+    frame_mat_mul(proj, view, mvp);
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            v[3 * i + k] = (float)(c[i][k] - eye[k]);
+    glUseProgram(prog);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "mvp"), 1, GL_FALSE, mvp);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, v);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisableVertexAttribArray(0);
+    glDisable(GL_DEPTH_TEST);
+}
+
 /* An application's camera as a swell_view: the eye at eye (m), looking along heading_deg (CCW
  * from +x) pitch_deg up (negative: down), no roll; a 45 deg vertical field of view, near 0.5 m,
  * far 5 km; the viewport w x h at the origin; clear and sky. */

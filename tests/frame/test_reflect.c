@@ -41,17 +41,6 @@
 static struct platform_handle g_ph;
 static GLuint g_fbo, g_prog;
 
-static void mat_mul(const float a[16], const float b[16], float out[16])
-{
-    for (int c = 0; c < 4; c++)
-        for (int r = 0; r < 4; r++) {
-            float acc = 0.0f;
-            for (int k = 0; k < 4; k++)
-                acc += a[4 * k + r] * b[4 * c + k];
-            out[4 * c + r] = acc;
-        }
-}
-
 /* The application's camera: EYE_Z m up at the origin, looking along +x, PITCH deg down. */
 static void app_view(swell_view *v)
 {
@@ -62,24 +51,10 @@ static void app_view(swell_view *v)
 /* The board, drawn with view and proj relative to eye (double, as an application would). */
 static void draw_board(const float view[16], const float proj[16], const double eye[3])
 {
-    float mvp[16];
-    mat_mul(proj, view, mvp);
-    float v[12];
-    double corner[4][3] = { { BOARD_X, -BOARD_HW, 0.0 }, { BOARD_X, BOARD_HW, 0.0 },
-                            { BOARD_X, -BOARD_HW, BOARD_TOP }, { BOARD_X, BOARD_HW, BOARD_TOP } };
-    for (int i = 0; i < 4; i++)
-        for (int k = 0; k < 3; k++)
-            v[3 * i + k] = (float)(corner[i][k] - eye[k]);
-    glUseProgram(g_prog);
-    glUniformMatrix4fv(glGetUniformLocation(g_prog, "mvp"), 1, GL_FALSE, mvp);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, v);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glDisableVertexAttribArray(0);
-    glDisable(GL_DEPTH_TEST);
+    static const double corner[4][3] = { { BOARD_X, -BOARD_HW, 0.0 }, { BOARD_X, BOARD_HW, 0.0 },
+                                         { BOARD_X, -BOARD_HW, BOARD_TOP },
+                                         { BOARD_X, BOARD_HW, BOARD_TOP } };
+    frame_draw_quad(g_prog, view, proj, eye, corner);
 }
 
 /* The board's mirror image (its corners with z negated) on the screen: columns x0..x1, rows
@@ -87,7 +62,7 @@ static void draw_board(const float view[16], const float proj[16], const double 
 static void predicted_rect(const swell_view *v, double rect[4])
 {
     float mvp[16];
-    mat_mul(v->proj, v->view, mvp);
+    frame_mat_mul(v->proj, v->view, mvp);
     rect[0] = rect[2] = 1e9;
     rect[1] = rect[3] = -1e9;
     for (int i = 0; i < 4; i++) {

@@ -1,0 +1,112 @@
+/* pass.c - what the application's passes share (reflect.c, shadow.c): a target it draws into
+ * (RGBA8 colour with its mip chain and 16-bit depth), and the GL state a pass changes, saved
+ * at its begin and restored at its end. */
+#include "render/internal.h"
+
+static uint64_t depth_bytes(int w, int h)
+{
+    return (uint64_t)w * (uint64_t)h * 2u;
+}
+
+/* The renderer's share (renderer_stats): colour with its mips (4/3) and depth. */
+static uint64_t target_bytes(int w, int h)
+{
+    return (uint64_t)w * (uint64_t)h * 16u / 3u + depth_bytes(w, h);
+}
+
+void pass_target_destroy(struct renderer *r, struct pass_target *t)
+{
+    if (t->w)
+        r->gpu_bytes -= target_bytes(t->w, t->h);
+    if (t->fbo)
+        glDeleteFramebuffers(1, &t->fbo);
+    if (t->depth) {
+        glDeleteRenderbuffers(1, &t->depth);
+        gpu_release(r->gpu, depth_bytes(t->w, t->h));
+    }
+    gpu_texture_destroy(r->gpu, &t->tex);
+    t->fbo = t->depth = 0;
+    t->w = t->h = t->levels = 0;
+}
+
+int pass_target_create(struct renderer *r, struct pass_target *t, int w, int h, int unit,
+                       const char *what, struct swell_err *err)
+{
+    pass_target_destroy(r, t);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + unit));
+    int levels = 1;
+    while ((w >> levels) || (h >> levels))
+        levels++;
+    int rc = gpu_texture_create(r->gpu, w, h, levels, FORMAT_RGBA8, 0, what, &t->tex, err);
+    if (rc)
+        return rc;
+    if ((rc = gpu_account(r->gpu, depth_bytes(w, h), what, err))) {
+        gpu_texture_destroy(r->gpu, &t->tex);
+        return rc;
+    }
+    t->w = w;
+    t->h = h;
+    t->levels = levels;
+    r->gpu_bytes += target_bytes(w, h);
+    glGenRenderbuffers(1, &t->depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
+    glGenFramebuffers(1, &t->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
+    GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        pass_target_destroy(r, t);
+        return swell_fail(err, SWELL_E_GL, "renderer: the %s %dx%d (RGBA8, 16-bit depth) is not "
+                          "complete on this device (status 0x%x)", what, w, h, st);
+    }
+    return gpu_check(what, err);
+}
+
+/* The target bound for the application's draws: its viewport, no scissor, depth writes on,
+ * colour cleared to transparent black and depth to 1. */
+void pass_target_bind(const struct pass_target *t)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glViewport(0, 0, t->w, t->h);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void pass_save(struct pass_saved *s)
+{
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &s->fbo);
+    glGetIntegerv(GL_VIEWPORT, s->viewport);
+    glGetIntegerv(GL_FRONT_FACE, &s->front);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, s->clear);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &s->depth_mask);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active);
+    s->scissor = glIsEnabled(GL_SCISSOR_TEST);
+}
+
+void pass_restore(const struct pass_saved *s)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)s->fbo);
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    glFrontFace((GLenum)s->front);
+    glActiveTexture((GLenum)s->active);
+    glClearColor(s->clear[0], s->clear[1], s->clear[2], s->clear[3]);
+    glDepthMask(s->depth_mask);
+    if (s->scissor)
+        glEnable(GL_SCISSOR_TEST);
+    else
+        glDisable(GL_SCISSOR_TEST);
+}
+
+/* The 1x1 transparent map a draw reads when no pass was drawn for it. */
+int pass_none_create(struct renderer *r, GLuint *tex, const char *what, struct swell_err *err)
+{
+    static const uint8_t clear[4] = { 0, 0, 0, 0 };
+    int rc = gpu_texture_create(r->gpu, 1, 1, 1, FORMAT_RGBA8, 0, what, tex, err);
+    if (rc)
+        return rc;
+    return upload_single(*tex, 1, 1, clear, what, err);
+}
