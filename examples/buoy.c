@@ -1,14 +1,15 @@
 /* buoy.c - swell inside an application's own GLES 2 program: the application makes its EGL
  * context and framebuffer, draws its own background, asks swell to draw the sea with the
  * application's camera matrices, then floats a buoy on the sea where swell's CPU query says
- * the water is, depth-tested against the sea swell drew. The buoy is drawn once more, into
- * swell's reflection pass, so the sea reflects it.
+ * the water is, depth-tested against the sea swell drew. The buoy is drawn once more into
+ * swell's reflection pass, so the sea reflects it, and once more into its shadow pass, so it
+ * shadows the sun on the sea; a boat passing behind it (not drawn) leaves its Kelvin wake.
  *
  *   cc buoy.c $(pkg-config --cflags --libs swell) -lm -o buoy && ./buoy [frame.ppm]
  *
  * Offscreen (EGL surfaceless, as a test or a batch renderer would run). It checks what it drew
- * and exits 1 if the sea, the buoy, its reflection or the application's own background is
- * missing, or if the draw left the GL state changed.
+ * and exits 1 if the sea, the buoy, its reflection, the wake or the application's own
+ * background is missing, or if the draw left the GL state changed.
  */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -154,13 +155,14 @@ int main(int argc, char **argv)
     make_framebuffer();
 
     /* the sea: a moderate sea baked in memory, its GPU side in this context */
-    swell_sea_desc sd = { .preset = "moderate", .budget_bytes = 4u << 20 };
+    swell_sea_desc sd = { .preset = "moderate", .budget_bytes = 8u << 20 };
     swell_sea *sea = NULL;
     swell_ocean *ocean = NULL;
     if (swell_sea_bake(&sd, &sea, &err))
         return fail("baking the sea", &err);
     swell_ocean_desc od = { .quality = SWELL_QUALITY_LOW, .sun_elev_deg = 25.0f,
-                            .sun_azim_deg = 150.0f, .reflections = 1 };
+                            .sun_azim_deg = 150.0f, .reflections = 1, .shadows = 1,
+                            .wakes = 1 };
     if (swell_ocean_create(sea, &od, &ocean, &err))
         return fail("creating the ocean", &err);
 
@@ -194,6 +196,11 @@ int main(int argc, char **argv)
         return fail("drawing the sea", &err);
     glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, alone);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    /* a 12 m hull at 5 m/s passing 60 m beyond the buoy, its wake on the sea */
+    swell_wake wake = { .position_m = { 76.0, -20.0 }, .heading_deg = 90.0f, .speed_mps = 5.0f,
+                        .hull_length_m = 12.0f };
+    if (swell_ocean_set_wake(ocean, &wake, &err))
+        return fail("setting the wake", &err);
     /* the buoy's reflection: drawn with the pass's mirrored camera, into swell's target */
     swell_pass pass;
     swell_reflection_desc rd = { .object_distance_m = 16.0f };
@@ -206,6 +213,16 @@ int main(int argc, char **argv)
     glDisable(GL_DEPTH_TEST);
     if (swell_ocean_end_reflection(ocean, &err))
         return fail("ending the reflection pass", &err);
+    /* its shadow: drawn with the sun's view, into swell's shadow map */
+    if (swell_ocean_begin_shadow(ocean, &view, NULL, &pass, &err))
+        return fail("beginning the shadow pass", &err);
+    float srel[3] = { (float)(buoy[0] - pass.camera_pos[0]),
+                      (float)(buoy[1] - pass.camera_pos[1]),
+                      (float)(buoy[2] - pass.camera_pos[2]) };
+    draw_buoy(prog, pass.view, pass.proj, srel);
+    glDisable(GL_DEPTH_TEST);
+    if (swell_ocean_end_shadow(ocean, &err))
+        return fail("ending the shadow pass", &err);
     glUseProgram(prog);
     if (swell_ocean_draw(ocean, &view, t, &err))
         return fail("drawing the sea", &err);
@@ -216,10 +233,13 @@ int main(int argc, char **argv)
     /* the buoy's reflection, before the buoy covers any of it: pixels yellower than the sea
      * drawn alone */
     glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
-    int reflection_px = 0;
+    int reflection_px = 0, changed_px = 0;
     for (int i = 0; i < W * H; i++) {
         const unsigned char *p = px + 4 * i, *q = alone + 4 * i;
-        reflection_px += (p[0] + p[1] - 2 * p[2]) - (q[0] + q[1] - 2 * q[2]) > 40;
+        int yellow = (p[0] + p[1] - 2 * p[2]) - (q[0] + q[1] - 2 * q[2]) > 40;
+        reflection_px += yellow;
+        /* the wake and the shadow: the sea changed otherwise */
+        changed_px += !yellow && abs(p[0] - q[0]) + abs(p[1] - q[1]) + abs(p[2] - q[2]) > 12;
     }
     draw_buoy(prog, view.view, view.proj, rel);
 
@@ -244,13 +264,13 @@ int main(int argc, char **argv)
             fclose(f);
         }
     }
-    printf("buoy: water at (%.1f, %.1f) is %.2f m high; %d sea, %d buoy, %d reflection, %d "
-           "background pixels; GL state %s\n", xy[0], xy[1], at.height_m, sea_px, buoy_px,
-           reflection_px, background, state_kept ? "kept" : "CHANGED");
+    printf("buoy: water at (%.1f, %.1f) is %.2f m high; %d sea, %d buoy, %d reflection, %d wake "
+           "and shadow, %d background pixels; GL state %s\n", xy[0], xy[1], at.height_m, sea_px,
+           buoy_px, reflection_px, changed_px, background, state_kept ? "kept" : "CHANGED");
     swell_ocean_destroy(ocean);
     swell_sea_destroy(sea);
     eglTerminate(dpy);
-    int ok = sea_px > W * H / 4 && buoy_px > 20 && reflection_px > 10 &&
+    int ok = sea_px > W * H / 4 && buoy_px > 20 && reflection_px > 10 && changed_px > 200 &&
              background > W * H / 10 && state_kept;
     return ok ? 0 : 1;
 }

@@ -91,7 +91,7 @@ void kelvin_eval(const struct kelvin_desc *d, double x, double y, struct kelvin_
     double hl = d->foam_half_life_s;
     /* foam where the wake breaks: slopes past a breaking slope, from when the bow passed */
     double sm = hypot(out->slope[0], out->slope[1]);
-    double f_break = bx > 0.0 ? smooth01((sm - 0.2) / 0.2) * exp2(-bx / u / hl) : 0.0;
+    double f_break = bx > 0.0 ? smooth01((sm - 0.25) / 0.25) * exp2(-bx / u / hl) : 0.0;
     /* the stern's turbulent strip, the beam wide and widening, from when the stern passed */
     double sx = -0.5 * len - x, f_stern = 0.0;
     if (sx > -0.25 * len) {
