@@ -175,6 +175,10 @@ typedef struct swell_ocean_desc {
                                  * (swell_ocean_begin_shadow): one more texture unit and a
                                  * 512 x 512 RGBA8 target with mipmaps and 16-bit depth
                                  * (1.8 MiB); default 0 */
+    int refractions;            /* 1: the application's objects under the water show through it
+                                 * (swell_ocean_begin_refraction): one more texture unit and a
+                                 * target as the reflection's, without mipmaps (1.1 MiB at
+                                 * 1280 x 720); default 0 */
 } swell_ocean_desc;
 
 /* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
@@ -223,6 +227,9 @@ typedef struct swell_pass {
                                  * wider, its near plane the sea plane (what lies under the
                                  * water is cut; the depth is not the view's) */
     int viewport[4];            /* the target's, already set: 0, 0, width, height */
+    float attenuation_per_m;    /* a refraction pass's: write alpha = exp(attenuation_per_m z)
+                                 * for a point at height z (< 0, m; the water's transmittance
+                                 * down to it) and colour times that alpha; 0 in the others */
 } swell_pass;
 
 /* Begin drawing the application's objects into the reflection map of the next
@@ -250,6 +257,27 @@ SWELL_API int swell_ocean_begin_reflection(swell_ocean *ocean, const swell_view 
  * blurred by the waves as eq. 27 blurs the sky, and they hide the sun's glitter they stand in
  * front of); a draw with no pass before it reflects the sky alone. */
 SWELL_API int swell_ocean_end_reflection(swell_ocean *ocean, struct swell_err *err);
+
+/* ---- objects under the sea: refraction (Hu et al. 2006 §2.2, §5.2, eq. 4) --------------- */
+
+/* Begin drawing the application's objects under the water into the refraction map of the next
+ * swell_ocean_draw (an ocean created with refractions = 1). swell binds its target (cleared to
+ * transparent, depth to 1) and gives the view of the scene under the water compressed along
+ * the vertical by the water's index of refraction (Hu's approximation of the refraction at the
+ * surface); what lies above the sea plane is cut. Draw the objects with the pass's matrices,
+ * writing colour times alpha and alpha = exp(pass.attenuation_per_m z) at each point's height z:
+ * the sea shows them through its surface's transmission (1 - Fresnel), fading into the water's
+ * own colour with depth per colour channel (eq. 4), moved by the waves' slopes. */
+typedef struct swell_refraction_desc {
+    float object_depth_m;       /* how deep they lie, m: the waves move them by this times the
+                                 * refracted rays' tilt; 0 = 2 m */
+    float object_distance_m;    /* how far from the camera, m; 0 = 30 m */
+} swell_refraction_desc;
+SWELL_API int swell_ocean_begin_refraction(swell_ocean *ocean, const swell_view *view,
+                                           const swell_refraction_desc *desc, swell_pass *out,
+                                           struct swell_err *err);
+/* End the pass (as swell_ocean_end_reflection). */
+SWELL_API int swell_ocean_end_refraction(swell_ocean *ocean, struct swell_err *err);
 
 /* ---- objects on the sea: the sun's shadows (Bruneton et al. 2010 §6) ------------------ */
 

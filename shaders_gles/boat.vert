@@ -6,13 +6,17 @@ attribute vec3 a_color;             // albedo, display colour
 uniform mat4 mvp;                   // boat frame -> clip (the eye's, or a reflection pass's)
 uniform mat3 model_rot;             // boat frame -> world rotation (heading, pitch, roll)
 uniform vec3 sun_dir;               // towards the sun, world
-varying vec3 v_color;
+uniform vec2 attenuation;           // a refraction pass's attenuation per m (0: none); the
+                                    // pose's heave, m
+varying vec4 v_color;               // alpha: the water's transmittance down to the point
 
 void main()
 {
     vec3 n = model_rot * a_normal;
     // two-sided: the mesh is drawn without culling
     float lambert = abs(dot(n, sun_dir));
-    v_color = a_color * (0.35 + 0.65 * lambert * step(0.0, sun_dir.z));
+    float z = attenuation.y + (model_rot * a_pos).z;
+    v_color = vec4(a_color * (0.35 + 0.65 * lambert * step(0.0, sun_dir.z)),
+                   exp(attenuation.x * min(z, 0.0)));
     gl_Position = mvp * vec4(a_pos, 1.0);
 }

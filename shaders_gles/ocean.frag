@@ -3,7 +3,8 @@
 // validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_NO_DETILE | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_NO_DETILE | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_LINEAR_OUT |
 // validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT SWELL_LINEAR_OUT |
 // validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_WAKE | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_WAKE SWELL_REFLECT | FS_PATTERNS=0 FS_WHITECAPS=0 SWELL_WAKE SWELL_RUN_LOD |
-// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_SHADOW | FS_PATTERNS=1 FS_WHITECAPS=1 SWELL_SHADOW SWELL_WAKE SWELL_REFLECT
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_SHADOW | FS_PATTERNS=1 FS_WHITECAPS=1 SWELL_SHADOW SWELL_WAKE SWELL_REFLECT |
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_REFRACT | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_REFRACT SWELL_SHADOW SWELL_WAKE SWELL_REFLECT SWELL_LINEAR_OUT
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
@@ -73,6 +74,14 @@ uniform vec4 wake_warp;             // (P, Q) -> the map's (u, v) (geometry/kelv
 uniform vec4 wake_rot;              // the map's R, G -> world slope: xy per R, zw per G...
 uniform vec3 wake_k;                // ...plus xy; z: B -> the mean square slope
 uniform vec3 wake_foam;             // low quality: the foam's radiance (x exposure)
+#endif
+#ifdef SWELL_REFRACT
+uniform sampler2D refr_tex;         // the application's objects under the water, the scene
+                                    // scaled by 1/n in z: display colour times alpha, alpha the
+                                    // green transmittance down to them (refract.c)
+uniform vec4 refr_screen;           // gl_FragCoord -> the map's uv: scale xy, offset zw
+uniform mat2 refr_shift;            // the slope deviation -> the map's uv shift
+uniform vec3 refr_tau;              // each channel's beam attenuation over green's
 #endif
 #ifdef SWELL_SHADOW
 uniform sampler2D shadow_tex;       // the application's shadow casters seen from the sun: their
@@ -355,6 +364,17 @@ vec3 sky_eq27(vec2 uv, float sigma)
     return sky;
 }
 
+#ifndef SWELL_LINEAR_OUT
+// A display colour back to radiance: tone_map (common.glsl) inverted, so a mirror (F = 1) or a
+// clear window onto an object shows it as the application drew it.
+vec3 display_to_radiance(vec3 c)
+{
+    vec3 y = c * c;
+    float m = min(max(max(y.r, y.g), y.b), 0.96);
+    return y / (1.0 - m);
+}
+#endif
+
 #ifdef SWELL_REFLECT
 // Local reflections (Bruneton 2010 §6, Hu 2006 §5.2): the objects' reflection map read along
 // the pixel's reflected ray, filtered as eq. 27 filters the sky (reflect.c). The ray comes back
@@ -405,10 +425,7 @@ vec4 reflect_local(vec2 sky_uv, float sigma)
     vec2 in_uv = step(vec2(0.0), uv) * step(uv, vec2(1.0));
     c *= step(0.0, q.z) * in_uv.x * in_uv.y;
 #ifndef SWELL_LINEAR_OUT
-    vec3 y = c.rgb / max(c.a, 1e-3);
-    y *= y;
-    float m = min(max(max(y.r, y.g), y.b), 0.96);
-    c.rgb = y * (c.a / (1.0 - m));
+    c.rgb = display_to_radiance(c.rgb / max(c.a, 1e-3)) * c.a;
 #endif
     return c;
 }
@@ -433,6 +450,24 @@ vec4 wake_sample()
     vec4 t = texture2D(wake_tex, uv);
     vec2 s = t.r * wake_rot.xy + t.g * wake_rot.zw + wake_k.xy;
     return in_map * vec4(s, max(t.b * wake_k.z - dot(s, s), 0.0), t.a);
+}
+#endif
+
+
+#ifdef SWELL_REFRACT
+// Hu eq. 4 per channel (refract.c): the objects' radiance and, per channel, the water's
+// transmittance down to them (1 - alpha_fog), T_c = T_green^(tau_c / tau_green); the lookup at
+// the pixel's own place in the map shifted by its slope deviation (the bumped refracted ray).
+vec4 refract_local(vec2 ds, out vec3 t)
+{
+    vec4 c = texture2D(refr_tex, gl_FragCoord.xy * refr_screen.xy + refr_screen.zw +
+                                 refr_shift * ds);
+    vec3 col = c.rgb / max(c.a, 1e-3);
+#ifndef SWELL_LINEAR_OUT
+    col = display_to_radiance(col);
+#endif
+    t = exp2(refr_tau * log2(max(c.a, 1e-4))) * step(1e-4, c.a);
+    return vec4(col, c.a);
 }
 #endif
 
@@ -544,6 +579,13 @@ void main()
     vec3 sea_lit = sea_radiance - shade * shadow_sea;
 #else
     vec3 sea_lit = sea_radiance;
+#endif
+#ifdef SWELL_REFRACT
+    // Hu eq. 4: C_refract = alpha_fog C_deep_water + (1 - alpha_fog) C_obj, the water body's
+    // light as C_deep_water, through the surface's (1 - F) below
+    vec3 refr_t;
+    vec4 refr_obj = refract_local(g_ds, refr_t);
+    sea_lit = mix(sea_lit, refr_obj.rgb, refr_t);
 #endif
     // Refracted light, eq. 28.
     vec3 clear_sea = sun + f_eff * sky + (1.0 - f_eff) * sea_lit;

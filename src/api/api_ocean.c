@@ -56,6 +56,7 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .texture_unit_first = d->texture_unit_first, .texture_unit_count = d->texture_unit_count,
         .linear_output = d->linear_output, .reflections = d->reflections != 0,
         .wakes = d->wakes != 0, .shadows = d->shadows != 0,
+        .refractions = d->refractions != 0,
     };
     struct gl_state st;
     o->unit0 = d->texture_unit_first;
@@ -151,6 +152,7 @@ static void pass_out(const struct renderer_pass *p, swell_pass *out)
     memcpy(out->view, p->view, sizeof out->view);
     memcpy(out->proj, p->proj, sizeof out->proj);
     memcpy(out->viewport, p->viewport, sizeof out->viewport);
+    out->attenuation_per_m = p->attenuation_per_m;
 }
 
 int swell_ocean_begin_reflection(swell_ocean *o, const swell_view *v,
@@ -169,6 +171,29 @@ int swell_ocean_begin_reflection(swell_ocean *o, const swell_view *v,
     if (desc)
         rd.distance_m = desc->object_distance_m;
     if ((rc = renderer_reflection_begin(o->renderer, &rv, &rd, &p, err)))
+        return rc;
+    pass_out(&p, out);
+    return SWELL_OK;
+}
+
+int swell_ocean_begin_refraction(swell_ocean *o, const swell_view *v,
+                                 const swell_refraction_desc *desc, swell_pass *out,
+                                 struct swell_err *err)
+{
+    if (!o || !v || !out)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_begin_refraction: ocean, view and out "
+                          "must not be NULL");
+    struct renderer_view rv;
+    int rc = renderer_view_of(v, 0.0, &rv, err);
+    if (rc)
+        return rc;
+    struct renderer_pass p;
+    struct renderer_refraction rd = { 0 };
+    if (desc) {
+        rd.depth_m = desc->object_depth_m;
+        rd.distance_m = desc->object_distance_m;
+    }
+    if ((rc = renderer_refraction_begin(o->renderer, &rv, &rd, &p, err)))
         return rc;
     pass_out(&p, out);
     return SWELL_OK;
@@ -218,6 +243,11 @@ static int end_pass(swell_ocean *o, int (*end)(struct renderer *, struct swell_e
 int swell_ocean_end_reflection(swell_ocean *o, struct swell_err *err)
 {
     return end_pass(o, renderer_reflection_end, "swell_ocean_end_reflection", err);
+}
+
+int swell_ocean_end_refraction(swell_ocean *o, struct swell_err *err)
+{
+    return end_pass(o, renderer_refraction_end, "swell_ocean_end_refraction", err);
 }
 
 int swell_ocean_end_shadow(swell_ocean *o, struct swell_err *err)

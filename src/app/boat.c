@@ -15,7 +15,7 @@
 #define KEEL (-0.7f)                /* the keel below it, m */
 #define PI_D 3.14159265358979323846
 
-enum { U_MVP, U_ROT, U_SUN, U_COUNT };
+enum { U_MVP, U_ROT, U_SUN, U_ATT, U_COUNT };
 
 struct boat {
     struct boat_desc d;
@@ -125,7 +125,7 @@ static void build_mesh(struct mesh *m)
 int boat_create(const struct boat_desc *d, const char *shader_dir, const struct gpu_caps *caps,
                 struct boat **out, struct swell_err *err)
 {
-    static const char *const names[U_COUNT] = { "mvp", "model_rot", "sun_dir" };
+    static const char *const names[U_COUNT] = { "mvp", "model_rot", "sun_dir", "attenuation" };
     static const struct shader_attrib attribs[3] = {
         { "a_pos", 0 }, { "a_normal", 1 }, { "a_color", 2 }
     };
@@ -207,7 +207,7 @@ const struct boat_desc *boat_get_desc(const struct boat *b)
 }
 
 void boat_draw(const struct boat *b, const float view[16], const float proj[16],
-               const double eye[3], const float sun_dir[3])
+               const double eye[3], const float sun_dir[3], float attenuation_per_m)
 {
     const struct boat_pose *p = &b->pose;
     mat4 model = GLM_MAT4_IDENTITY_INIT, v, pr, mvp;
@@ -223,6 +223,8 @@ void boat_draw(const struct boat *b, const float view[16], const float proj[16],
     glUniformMatrix4fv(b->u[U_MVP], 1, GL_FALSE, (const GLfloat *)mvp);
     glUniformMatrix3fv(b->u[U_ROT], 1, GL_FALSE, p->rot);
     glUniform3fv(b->u[U_SUN], 1, sun_dir);
+    /* the hull's world height per vertex: the pose's heave plus the rotated model point */
+    glUniform2f(b->u[U_ATT], attenuation_per_m, (float)p->pos[2]);
     glBindBuffer(GL_ARRAY_BUFFER, b->vbo);
     for (GLuint a = 0; a < 3; a++) {
         glEnableVertexAttribArray(a);

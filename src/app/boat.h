@@ -41,10 +41,12 @@ void boat_pose_at(struct boat *b, const struct swell_tables *t, int detile, doub
 const struct boat_pose *boat_pose(const struct boat *b);
 const struct boat_desc *boat_get_desc(const struct boat *b);
 /* Draw it with a view (world-to-eye rotation, column-major) and projection relative to the eye
- * at eye (the camera's, or a reflection pass's mirrored one), lit by the sun (towards it,
- * world). Depth-tested with GL_LEQUAL; no culling; leaves its program and buffer bound. */
+ * at eye (the camera's, or a pass's), lit by the sun (towards it, world). attenuation_per_m >
+ * 0 (a refraction pass's): colour times alpha = exp(it z) at each point's height z < 0, the
+ * water's transmittance down to it (what lies above the water is cut by the pass); 0: alpha 1.
+ * Depth-tested with GL_LEQUAL; no culling; leaves its program and buffer bound. */
 void boat_draw(const struct boat *b, const float view[16], const float proj[16],
-               const double eye[3], const float sun_dir[3]);
+               const double eye[3], const float sun_dir[3], float attenuation_per_m);
 void boat_destroy(struct boat *b);
 
 #endif

@@ -114,8 +114,8 @@ static void sun_direction(float elev_deg, float azim_deg, float out[3])
 }
 
 /* The demo boat in a frame (--boat): before the sea, its pose on the sea at t, its wake (none
- * below the slowest speed a wake is drawn for), its reflection pass and its shadow pass (the
- * renderer reads them); after the sea, the boat itself, depth-tested. bench.h's hooks take the
+ * below the slowest speed a wake is drawn for), its reflection, shadow and refraction passes
+ * (the renderer reads them); after the sea, the boat itself, depth-tested. bench.h's hooks take the
  * same. */
 struct boat_scene {
     struct renderer *r;
@@ -151,14 +151,21 @@ static int boat_before(void *ctx, const struct camera *cam, double t, int w, int
     if ((rc = renderer_reflection_begin(r, v, &rr, &pass, err)))
         return rc;
     glEnable(GL_DEPTH_TEST);
-    boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir);
+    boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir, 0.0f);
     if ((rc = renderer_reflection_end(r, err)))
         return rc;
     struct renderer_shadow sh = { .distance_m = (float)fmax(2.0 * rr.distance_m, 60.0) };
     if ((rc = renderer_shadow_begin(r, v, &sh, &pass, err)))
         return rc;
-    boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir);
-    return renderer_shadow_end(r, err);
+    boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir, 0.0f);
+    if ((rc = renderer_shadow_end(r, err)))
+        return rc;
+    /* its hull under the water, seen through it */
+    struct renderer_refraction rf = { .depth_m = 0.5f, .distance_m = rr.distance_m };
+    if ((rc = renderer_refraction_begin(r, v, &rf, &pass, err)))
+        return rc;
+    boat_draw(b, pass.view, pass.proj, pass.camera_pos, sun_dir, pass.attenuation_per_m);
+    return renderer_refraction_end(r, err);
 }
 
 static int boat_after(void *ctx, const struct camera *cam, double t, int w, int h,
@@ -171,7 +178,8 @@ static int boat_after(void *ctx, const struct camera *cam, double t, int w, int 
     float sun_dir[3];
     sun_direction(bs->sun_elev_deg, bs->sun_azim_deg, sun_dir);
     camera_frame_make(&bs->view.cam, w, h, &cf);
-    boat_draw(bs->boat, (const float *)cf.view_rel, (const float *)cf.proj, cam->pos, sun_dir);
+    boat_draw(bs->boat, (const float *)cf.view_rel, (const float *)cf.proj, cam->pos, sun_dir,
+              0.0f);
     return SWELL_OK;
 }
 
@@ -428,6 +436,7 @@ int main(int argc, char **argv)
         .pixel_lod = o.pixel_lod, .debug_uncovered = o.debug_uncovered,
         .debug_variants = o.debug_variants,
         .detile = o.detile, .reflections = o.boat, .wakes = o.boat, .shadows = o.boat,
+        .refractions = o.boat,
     };
     rc = renderer_open(&rd, &gpu, o.tier, budget, note_fallback, NULL, &r, &err);
     o.quality = rd.quality;

@@ -26,6 +26,10 @@
 
 /* R (above) per channel (680, 550, 440 nm) for chlorophyll c_mg_m3 > 0. */
 void water_reflectance(double c_mg_m3, double r[3]);
+/* The beam attenuation c = a + b per channel, 1 / m (b the total scattering: sea water's
+ * b_w(500) = 0.00288, the particles' 0.3 C^0.62 at 550 nm, lambda^-1): how fast an object's
+ * contrast fades along a path through the water (Hu 2006 eq. 4's fog; refract.c). */
+void water_attenuation(double c_mg_m3, double out[3]);
 /* eq. 28's albedo: L_sea = albedo E / pi (above). */
 void water_albedo(double c_mg_m3, float albedo[3]);
 

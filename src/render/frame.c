@@ -278,6 +278,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     reflect_uniforms(r, u);
     wake_uniforms(r, view, u, foam);
     shadow_uniforms(r, view, u, sea_sun, foam_sun);
+    refract_uniforms(r, u);
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
@@ -493,7 +494,8 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
             glBlendFunc(GL_ZERO, GL_CONSTANT_COLOR);
         }
         draw_runs(r, &view);
-        r->refl_ready = r->shadow_ready = 0;   /* a pass serves the draw after it */
+        r->refl_ready = r->shadow_ready = r->refr_ready = 0;   /* a pass serves the draw
+                                                                * after it */
         glDisable(GL_BLEND);
         for (int a = 0; a < A_COUNT; a++)
             glDisableVertexAttribArray((GLuint)a);

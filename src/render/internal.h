@@ -37,6 +37,7 @@ enum ocean_uniform {
     OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
     OU_REFL_LEVELS, OU_REFL_UP, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM,
     OU_WAKE_WARP, OU_SHADOW_TEX, OU_SHADOW_MAT, OU_SHADOW_SEA, OU_SHADOW_FOAM,
+    OU_REFR_TEX, OU_REFR_SCREEN, OU_REFR_SHIFT, OU_REFR_TAU,
     OU_COUNT
 };
 
@@ -123,12 +124,15 @@ struct pass_saved {
 
 /* Texture units: 0 Fresnel, 1 sky, 2 the reflection map where renderer_desc reflections asks
  * for one (reflect.c), then the wake's map where wakes asks (wake.c), the shadow map where
- * shadows asks (shadow.c), then slope/whitecap per fragment pattern slot (unit_patterns). */
+ * shadows asks (shadow.c), the refraction map where refractions asks (refract.c), then
+ * slope/whitecap per fragment pattern slot (unit_patterns). */
 enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_REFLECT = 2 };
 #define UNIT_WAKE_OF(reflections) (2 + ((reflections) != 0))
 #define UNIT_SHADOW_OF(reflections, wakes) (UNIT_WAKE_OF(reflections) + ((wakes) != 0))
-#define UNIT_PATTERNS_OF(reflections, wakes, shadows) \
+#define UNIT_REFRACT_OF(reflections, wakes, shadows) \
     (UNIT_SHADOW_OF(reflections, wakes) + ((shadows) != 0))
+#define UNIT_PATTERNS_OF(reflections, wakes, shadows, refractions) \
+    (UNIT_REFRACT_OF(reflections, wakes, shadows) + ((refractions) != 0))
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
 #define VAR_KNOTS 4                   /* low quality's pixel variance per run (pixel_var_at) */
@@ -265,12 +269,26 @@ struct renderer {
     int shadow_active, shadow_ready;  /* as refl_active, refl_ready */
     double shadow_aff[3][3];          /* the camera-relative sea point -> the map's uv */
     struct pass_saved shadow_saved;
+    /* Refractions (refract.c, renderer_desc refractions) */
+    struct pass_target refr;          /* the scaled underwater scene the application draws */
+    GLuint refr_none;                 /* 1x1 transparent: a draw with no pass before it */
+    int refr_active, refr_ready;
+    float refr_screen[4];             /* gl_FragCoord -> the map's uv */
+    float refr_shift[4];              /* mat2: the slope deviation -> the map's uv shift */
+    float refr_tau[3];                /* each channel's beam attenuation over green's */
+    struct pass_saved refr_saved;
 };
+
+/* A pass (reflection, shadow, refraction) is open: no other may begin. */
+static inline int pass_open(const struct renderer *r)
+{
+    return r->refl_active || r->shadow_active || r->refr_active;
+}
 
 /* The first unit of the pattern slots' tables. */
 static inline int unit_patterns(const struct renderer *r)
 {
-    return UNIT_PATTERNS_OF(r->d.reflections, r->d.wakes, r->d.shadows);
+    return UNIT_PATTERNS_OF(r->d.reflections, r->d.wakes, r->d.shadows, r->d.refractions);
 }
 
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
@@ -330,13 +348,27 @@ void reflect_destroy(struct renderer *r);
 void reflect_uniforms(const struct renderer *r, const GLint *u);
 
 /* pass.c */
-int  pass_target_create(struct renderer *r, struct pass_target *t, int w, int h, int unit,
-                        const char *what, struct swell_err *err);
+/* mips 1: with its mip chain (the pass's end builds it), 0: level 0 alone */
+int  pass_target_create(struct renderer *r, struct pass_target *t, int w, int h, int mips,
+                        int unit, const char *what, struct swell_err *err);
 void pass_target_destroy(struct renderer *r, struct pass_target *t);
 void pass_target_bind(const struct pass_target *t);
 void pass_save(struct pass_saved *s);
 void pass_restore(const struct pass_saved *s);
 int  pass_none_create(struct renderer *r, GLuint *tex, const char *what, struct swell_err *err);
+/* The size of a view pass's map for a viewport (half of it, POT, 32..512). */
+void pass_target_size(int vw, int vh, int *w, int *h);
+/* Lengyel's oblique near plane: proj (column-major) made to clip at the eye-space plane c
+ * (points with c . (x, y, z, 1) < 0 cut), the camera on that side (c[3] < 0). */
+void pass_oblique_near(float p[16], const double c[4]);
+/* A view pass's field of view is the view's widened by this factor (tan of the half angles),
+ * so a ray the waves tilt past the screen's edge still finds its object. */
+#define PASS_MARGIN 1.25f
+
+/* refract.c */
+int  refract_create(struct renderer *r, struct swell_err *err);
+void refract_destroy(struct renderer *r);
+void refract_uniforms(const struct renderer *r, const GLint *u);
 
 /* shadow.c */
 int  shadow_create(struct renderer *r, struct swell_err *err);

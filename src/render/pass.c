@@ -3,21 +3,27 @@
  * at its begin and restored at its end. */
 #include "render/internal.h"
 
+/* A view pass's map: the viewport's size halved, as a power of two (GLES 2 mipmaps), within
+ * these. */
+#define PASS_MIN 32
+#define PASS_MAX 512
+
 static uint64_t depth_bytes(int w, int h)
 {
     return (uint64_t)w * (uint64_t)h * 2u;
 }
 
-/* The renderer's share (renderer_stats): colour with its mips (4/3) and depth. */
-static uint64_t target_bytes(int w, int h)
+/* The renderer's share (renderer_stats): colour (with its mips, 4/3) and depth. */
+static uint64_t target_bytes(int w, int h, int levels)
 {
-    return (uint64_t)w * (uint64_t)h * 16u / 3u + depth_bytes(w, h);
+    uint64_t n = (uint64_t)w * (uint64_t)h;
+    return (levels > 1 ? n * 16u / 3u : n * 4u) + depth_bytes(w, h);
 }
 
 void pass_target_destroy(struct renderer *r, struct pass_target *t)
 {
     if (t->w)
-        r->gpu_bytes -= target_bytes(t->w, t->h);
+        r->gpu_bytes -= target_bytes(t->w, t->h, t->levels);
     if (t->fbo)
         glDeleteFramebuffers(1, &t->fbo);
     if (t->depth) {
@@ -29,13 +35,13 @@ void pass_target_destroy(struct renderer *r, struct pass_target *t)
     t->w = t->h = t->levels = 0;
 }
 
-int pass_target_create(struct renderer *r, struct pass_target *t, int w, int h, int unit,
-                       const char *what, struct swell_err *err)
+int pass_target_create(struct renderer *r, struct pass_target *t, int w, int h, int mips,
+                       int unit, const char *what, struct swell_err *err)
 {
     pass_target_destroy(r, t);
     glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + unit));
     int levels = 1;
-    while ((w >> levels) || (h >> levels))
+    while (mips && ((w >> levels) || (h >> levels)))
         levels++;
     int rc = gpu_texture_create(r->gpu, w, h, levels, FORMAT_RGBA8, 0, what, &t->tex, err);
     if (rc)
@@ -47,7 +53,7 @@ int pass_target_create(struct renderer *r, struct pass_target *t, int w, int h, 
     t->w = w;
     t->h = h;
     t->levels = levels;
-    r->gpu_bytes += target_bytes(w, h);
+    r->gpu_bytes += target_bytes(w, h, levels);
     glGenRenderbuffers(1, &t->depth);
     glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
@@ -110,3 +116,35 @@ int pass_none_create(struct renderer *r, GLuint *tex, const char *what, struct s
         return rc;
     return upload_single(*tex, 1, 1, clear, what, err);
 }
+
+static int pot_floor(int n)
+{
+    int p = 1;
+    while (2 * p <= n)
+        p *= 2;
+    return p;
+}
+
+void pass_target_size(int vw, int vh, int *w, int *h)
+{
+    *w = pot_floor(vw / 2);
+    *h = pot_floor(vh / 2);
+    *w = *w < PASS_MIN ? PASS_MIN : *w > PASS_MAX ? PASS_MAX : *w;
+    *h = *h < PASS_MIN ? PASS_MIN : *h > PASS_MAX ? PASS_MAX : *h;
+}
+
+/* Lengyel's oblique near plane: proj (column-major) made to clip at the eye-space plane c
+ * (points with c . (x, y, z, 1) < 0 cut), the camera on that side (c[3] < 0). */
+void pass_oblique_near(float p[16], const double c[4])
+{
+    double q[4] = { ((c[0] > 0.0) - (c[0] < 0.0) + p[8]) / p[0],
+                    ((c[1] > 0.0) - (c[1] < 0.0) + p[9]) / p[5], -1.0,
+                    (1.0 + p[10]) / p[14] };
+    double dq = c[0] * q[0] + c[1] * q[1] + c[2] * q[2] + c[3] * q[3];
+    double s = 2.0 / dq;
+    p[2] = (float)(c[0] * s);
+    p[6] = (float)(c[1] * s);
+    p[10] = (float)(c[2] * s + 1.0);
+    p[14] = (float)(c[3] * s);
+}
+

@@ -23,7 +23,8 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "var_knot_frame_v", "sky_run_lod", "sky_run_blk", "wc_trust", "foam_detail", "refl_tex", "refl_mat",
     "refl_screen", "refl_ray", "refl_down", "refl_blur", "refl_levels",
     "refl_up", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam",
-    "wake_warp", "shadow_tex", "shadow_mat", "shadow_sea", "shadow_foam"
+    "wake_warp", "shadow_tex", "shadow_mat", "shadow_sea", "shadow_foam",
+    "refr_tex", "refr_screen", "refr_shift", "refr_tau"
 };
 static const char *const sky_uniform_names[SU_COUNT] = {
     "clip_to_world_rel", "sky_view", "sky_view_scale", "sky_sun", "sun_ndc", "sun_display"
@@ -96,14 +97,15 @@ int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = (int)(sizeof(ocean_attribs) / sizeof(ocean_attribs[0]));
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s",
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s%s",
                              k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
                              r->run_lod ? " SWELL_RUN_LOD" : "",
                              renderer_detile(r) ? "" : " SWELL_NO_DETILE",
                              r->d.linear_output ? " SWELL_LINEAR_OUT" : "",
                              r->d.reflections ? " SWELL_REFLECT" : "",
                              r->d.wakes ? " SWELL_WAKE" : "",
-                             r->d.shadows ? " SWELL_SHADOW" : "");
+                             r->d.shadows ? " SWELL_SHADOW" : "",
+                             r->d.refractions ? " SWELL_REFRACT" : "");
             int v = VARIANT(k, kw);
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",

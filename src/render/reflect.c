@@ -22,20 +22,7 @@
 #include <string.h>
 #include "render/internal.h"
 
-/* The map: the viewport's size halved, as a power of two (GLES 2 mipmaps), within these. */
-#define REFLECT_MIN 32
-#define REFLECT_MAX 512
-/* The pass's field of view is the view's widened by this factor (tan of the half angles), so
- * a ray the waves tilt past the screen's edge still finds its object. */
-#define REFLECT_MARGIN 1.25f
-
-static int pot_floor(int n)
-{
-    int p = 1;
-    while (2 * p <= n)
-        p *= 2;
-    return p;
-}
+#define REFLECT_MARGIN PASS_MARGIN
 
 /* The atlas of the map's levels (w x 2h RGBA8), the renderer's share. */
 static uint64_t atlas_bytes(int w, int h)
@@ -82,13 +69,12 @@ int reflect_create(struct renderer *r, struct swell_err *err)
 
 static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *err)
 {
-    int w = pot_floor(vw / 2), h = pot_floor(vh / 2);
-    w = w < REFLECT_MIN ? REFLECT_MIN : w > REFLECT_MAX ? REFLECT_MAX : w;
-    h = h < REFLECT_MIN ? REFLECT_MIN : h > REFLECT_MAX ? REFLECT_MAX : h;
+    int w, h;
+    pass_target_size(vw, vh, &w, &h);
     if (r->refl.fbo && w == r->refl.w && h == r->refl.h)
         return 0;
     release_target(r);
-    int rc = pass_target_create(r, &r->refl, w, h, UNIT_REFLECT, "reflection map", err);
+    int rc = pass_target_create(r, &r->refl, w, h, 1, UNIT_REFLECT, "reflection map", err);
     if (rc)
         return rc;
     rc = gpu_texture_create(r->gpu, w, 2 * h, 1, FORMAT_RGBA8, 0, "reflection atlas",
@@ -111,21 +97,6 @@ static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *e
     return gpu_check("renderer: reflection target", err);
 }
 
-/* Lengyel's oblique near plane: proj (column-major) made to clip at the eye-space plane c
- * (points with c . (x, y, z, 1) < 0 cut), the camera on that side (c[3] < 0). */
-static void oblique_near(float p[16], const double c[4])
-{
-    double q[4] = { ((c[0] > 0.0) - (c[0] < 0.0) + p[8]) / p[0],
-                    ((c[1] > 0.0) - (c[1] < 0.0) + p[9]) / p[5], -1.0,
-                    (1.0 + p[10]) / p[14] };
-    double dq = c[0] * q[0] + c[1] * q[1] + c[2] * q[2] + c[3] * q[3];
-    double s = 2.0 / dq;
-    p[2] = (float)(c[0] * s);
-    p[6] = (float)(c[1] * s);
-    p[10] = (float)(c[2] * s + 1.0);
-    p[14] = (float)(c[3] * s);
-}
-
 int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
                               const struct renderer_reflection *d, struct renderer_pass *out,
                               struct swell_err *err)
@@ -133,7 +104,7 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     if (!r->d.reflections)
         return swell_fail(err, SWELL_E_ARG, "renderer: no reflection target: create the ocean "
                           "with reflections = 1");
-    if (r->refl_active || r->shadow_active)
+    if (pass_open(r))
         return swell_fail(err, SWELL_E_ARG, "renderer: a pass is open already: end it first");
     if (d && (!(d->distance_m >= 0.0f) || !isfinite(d->distance_m)))
         return swell_fail(err, SWELL_E_ARG, "renderer: the reflected objects' distance %g m "
@@ -165,7 +136,7 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
      * z' > 0, i.e. with q the mirrored point less the camera, -(q_z + c_z) >= 0 kept. In the
      * eye frame the plane's normal is V (0, 0, -1). */
     double plane[4] = { -vr[8], -vr[9], -vr[10], -cz };
-    oblique_near(out->proj, plane);
+    pass_oblique_near(out->proj, plane);
     out->viewport[2] = r->refl.w;
     out->viewport[3] = r->refl.h;
 

@@ -76,6 +76,7 @@ void renderer_destroy(struct renderer *r)
     reflect_destroy(r);
     wake_destroy(r);
     shadow_destroy(r);
+    refract_destroy(r);
     free(r->scratch);
     shader_program_destroy(&r->sunp);
     shader_program_destroy(&r->skyp);
@@ -145,7 +146,8 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     GLint combined = 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     int first = desc->texture_unit_first, count = desc->texture_unit_count;
-    int least = UNIT_PATTERNS_OF(desc->reflections, desc->wakes, desc->shadows) + 1;
+    int least = UNIT_PATTERNS_OF(desc->reflections, desc->wakes, desc->shadows,
+                                 desc->refractions) + 1;
     if (first < 0 || count < 0 || (count > 0 && count < least) ||
         first + (count > 0 ? count : least) > combined)
         return swell_fail(err, SWELL_E_ARG, "renderer: texture units %d..%d: the device has "
@@ -175,7 +177,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     gd.no_detile = !renderer_detile(r);
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
         (rc = reflect_create(r, err)) || (rc = wake_create(r, err)) ||
-        (rc = shadow_create(r, err)) ||
+        (rc = shadow_create(r, err)) || (rc = refract_create(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
         (rc = probe_programs(r, err)))
         goto fail;

@@ -79,6 +79,10 @@ struct renderer_desc {
     int shadows;                        /* 1: the sun's shadows of the application's objects
                                          * (shadow.c): a texture unit, a 512^2 target,
                                          * renderer_shadow_begin; default 0 */
+    int refractions;                    /* 1: the application's objects under the water seen
+                                         * through it (refract.c): a texture unit, a target
+                                         * as the reflection's, renderer_refraction_begin;
+                                         * default 0 */
     int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
                                          * naming the ocean program it is drawn with, no sky
                                          * (white): the screen's share of each program
@@ -163,10 +167,13 @@ void renderer_frame_view(const struct renderer *r, const struct camera *cam, int
  * viewport, front face, clear colour, depth mask and scissor test begin found; the next draw
  * reads the map, later ones only after another pass. */
 struct renderer_pass {
-    double camera_pos[3];               /* the mirrored eye, m */
+    double camera_pos[3];               /* the pass's eye (mirrored, the sun's, scaled), m */
     float view[16];                     /* world-to-eye, column-major, translation 0 */
     float proj[16];                     /* eye-to-clip, column-major */
     int viewport[4];                    /* the target's: 0, 0, width, height */
+    float attenuation_per_m;            /* refraction: write alpha = exp(this z) for a point
+                                         * at height z < 0 (the water's transmittance down to
+                                         * it, refract.c); 0 for the other passes */
 };
 struct renderer_reflection {
     float distance_m;                   /* the objects' distance from the camera, m: how far
@@ -177,6 +184,21 @@ int  renderer_reflection_begin(struct renderer *r, const struct renderer_view *v
                                const struct renderer_reflection *d, struct renderer_pass *out,
                                struct swell_err *err);
 int  renderer_reflection_end(struct renderer *r, struct swell_err *err);
+/* Refractions (renderer_desc refractions; Hu 2006 §2.2, §5.2, eq. 4): begin binds the
+ * refraction target (cleared to transparent, depth to 1) and gives the view of the scene under
+ * the water scaled along the vertical by 1/n (what lies above the sea plane is cut); the
+ * application draws its underwater objects with it, their display colour and alpha =
+ * exp(attenuation_per_m z) at each point's height z. end restores the state begin found; the
+ * next draw shows them through the surface (eq. 4's fog per channel), shifted by the waves'
+ * slopes as a point depth_m deep and distance_m away would be. */
+struct renderer_refraction {
+    float depth_m;                      /* 0: 2 */
+    float distance_m;                   /* 0: 30 */
+};
+int  renderer_refraction_begin(struct renderer *r, const struct renderer_view *v,
+                               const struct renderer_refraction *d, struct renderer_pass *out,
+                               struct swell_err *err);
+int  renderer_refraction_end(struct renderer *r, struct swell_err *err);
 /* Sun shadows (renderer_desc shadows; Bruneton 2010 §6, Hu 2006 §2.2): begin binds the shadow
  * target (colour cleared to 0, depth to 1) and gives the sun's view of the sea around the
  * camera: an orthographic projection along the sun's rays over a square of distance_m either

@@ -30,7 +30,7 @@ int shadow_create(struct renderer *r, struct swell_err *err)
 {
     if (!r->d.shadows)
         return 0;
-    int rc = pass_target_create(r, &r->shadow, SHADOW_SIZE, SHADOW_SIZE,
+    int rc = pass_target_create(r, &r->shadow, SHADOW_SIZE, SHADOW_SIZE, 1,
                                 UNIT_SHADOW_OF(r->d.reflections, r->d.wakes), "shadow map", err);
     if (!rc)
         rc = pass_none_create(r, &r->shadow_none, "shadow (none)", err);
@@ -44,7 +44,7 @@ int renderer_shadow_begin(struct renderer *r, const struct renderer_view *v,
     if (!r->d.shadows)
         return swell_fail(err, SWELL_E_ARG, "renderer: no shadow map: create the ocean with "
                           "shadows = 1");
-    if (r->shadow_active || r->refl_active)
+    if (pass_open(r))
         return swell_fail(err, SWELL_E_ARG, "renderer: a pass is open already: end it first");
     double rad = d && d->distance_m > 0.0f ? d->distance_m : SHADOW_DISTANCE_M;
     double ht = d && d->height_m > 0.0f ? d->height_m : SHADOW_HEIGHT_M;
