@@ -155,70 +155,58 @@ static void pass_out(const struct renderer_pass *p, swell_pass *out)
     out->attenuation_per_m = p->attenuation_per_m;
 }
 
-int swell_ocean_begin_reflection(swell_ocean *o, const swell_view *v,
-                                 const swell_reflection_desc *desc, swell_pass *out,
-                                 struct swell_err *err)
+/* A pass's begin: the arguments checked, the view converted; then begin (one of the three
+ * renderer begins, its descriptor in d) and the pass copied out. */
+enum pass_kind { PASS_REFLECTION, PASS_REFRACTION, PASS_SHADOW };
+static int begin_pass(swell_ocean *o, const swell_view *v, enum pass_kind kind, const void *d,
+                      swell_pass *out, const char *what, struct swell_err *err)
 {
     if (!o || !v || !out)
-        return swell_fail(err, SWELL_E_ARG, "swell_ocean_begin_reflection: ocean, view and out "
-                          "must not be NULL");
+        return swell_fail(err, SWELL_E_ARG, "%s: ocean, view and out must not be NULL", what);
     struct renderer_view rv;
     int rc = renderer_view_of(v, 0.0, &rv, err);
     if (rc)
         return rc;
     struct renderer_pass p;
+    rc = kind == PASS_REFLECTION ? renderer_reflection_begin(o->renderer, &rv, d, &p, err)
+       : kind == PASS_REFRACTION ? renderer_refraction_begin(o->renderer, &rv, d, &p, err)
+                                 : renderer_shadow_begin(o->renderer, &rv, d, &p, err);
+    if (!rc)
+        pass_out(&p, out);
+    return rc;
+}
+
+int swell_ocean_begin_reflection(swell_ocean *o, const swell_view *v,
+                                 const swell_reflection_desc *desc, swell_pass *out,
+                                 struct swell_err *err)
+{
     struct renderer_reflection rd = { 0 };
     if (desc)
         rd.distance_m = desc->object_distance_m;
-    if ((rc = renderer_reflection_begin(o->renderer, &rv, &rd, &p, err)))
-        return rc;
-    pass_out(&p, out);
-    return SWELL_OK;
+    return begin_pass(o, v, PASS_REFLECTION, &rd, out, "swell_ocean_begin_reflection", err);
 }
 
 int swell_ocean_begin_refraction(swell_ocean *o, const swell_view *v,
                                  const swell_refraction_desc *desc, swell_pass *out,
                                  struct swell_err *err)
 {
-    if (!o || !v || !out)
-        return swell_fail(err, SWELL_E_ARG, "swell_ocean_begin_refraction: ocean, view and out "
-                          "must not be NULL");
-    struct renderer_view rv;
-    int rc = renderer_view_of(v, 0.0, &rv, err);
-    if (rc)
-        return rc;
-    struct renderer_pass p;
     struct renderer_refraction rd = { 0 };
     if (desc) {
         rd.depth_m = desc->object_depth_m;
         rd.distance_m = desc->object_distance_m;
     }
-    if ((rc = renderer_refraction_begin(o->renderer, &rv, &rd, &p, err)))
-        return rc;
-    pass_out(&p, out);
-    return SWELL_OK;
+    return begin_pass(o, v, PASS_REFRACTION, &rd, out, "swell_ocean_begin_refraction", err);
 }
 
 int swell_ocean_begin_shadow(swell_ocean *o, const swell_view *v, const swell_shadow_desc *desc,
                              swell_pass *out, struct swell_err *err)
 {
-    if (!o || !v || !out)
-        return swell_fail(err, SWELL_E_ARG, "swell_ocean_begin_shadow: ocean, view and out must "
-                          "not be NULL");
-    struct renderer_view rv;
-    int rc = renderer_view_of(v, 0.0, &rv, err);
-    if (rc)
-        return rc;
-    struct renderer_pass p;
     struct renderer_shadow sd = { 0 };
     if (desc) {
         sd.distance_m = desc->distance_m;
         sd.height_m = desc->caster_height_m;
     }
-    if ((rc = renderer_shadow_begin(o->renderer, &rv, &sd, &p, err)))
-        return rc;
-    pass_out(&p, out);
-    return SWELL_OK;
+    return begin_pass(o, v, PASS_SHADOW, &sd, out, "swell_ocean_begin_shadow", err);
 }
 
 /* A pass's end: what it changes besides the framebuffer, viewport, clear colour, depth mask

@@ -67,15 +67,11 @@ static inline GLuint frame_app_framebuffer(int w, int h)
     return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
 }
 
-/* An application's object program: a_pos (attribute 0) by the uniform mvp, in one flat colour
- * (alpha 1); 0 when it does not link. */
-static inline GLuint frame_flat_program(float r, float g, float b)
+/* An application's program from its two sources, a_pos at attribute 0; 0 when it does not
+ * link. */
+static inline GLuint frame_program(const char *vs, const char *fs)
 {
-    char fs[160];
-    snprintf(fs, sizeof fs, "precision mediump float;\nvoid main() { gl_FragColor = "
-             "vec4(%.3f, %.3f, %.3f, 1.0); }\n", (double)r, (double)g, (double)b);
-    const char *src[2] = { "attribute vec3 a_pos; uniform mat4 mvp;\n"
-                           "void main() { gl_Position = mvp * vec4(a_pos, 1.0); }\n", fs };
+    const char *src[2] = { vs, fs };
     GLenum kind[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
     GLuint p = glCreateProgram();
     for (int i = 0; i < 2; i++) {
@@ -89,6 +85,17 @@ static inline GLuint frame_flat_program(float r, float g, float b)
     GLint ok = 0;
     glGetProgramiv(p, GL_LINK_STATUS, &ok);
     return ok ? p : 0;
+}
+
+/* An application's object program: a_pos (attribute 0) by the uniform mvp, in one flat colour
+ * (alpha 1); 0 when it does not link. */
+static inline GLuint frame_flat_program(float r, float g, float b)
+{
+    char fs[160];
+    snprintf(fs, sizeof fs, "precision mediump float;\nvoid main() { gl_FragColor = "
+             "vec4(%.3f, %.3f, %.3f, 1.0); }\n", (double)r, (double)g, (double)b);
+    return frame_program("attribute vec3 a_pos; uniform mat4 mvp;\n"
+                         "void main() { gl_Position = mvp * vec4(a_pos, 1.0); }\n", fs);
 }
 
 /* out = a b, 4 x 4 column-major. */

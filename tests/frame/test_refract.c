@@ -46,26 +46,13 @@ static uint8_t g_a[W * H * 4], g_b[W * H * 4];
  * vertex (what the pass asks). */
 static GLuint board_program(void)
 {
-    const char *src[2] = {
+    return frame_program(
         "attribute vec3 a_pos; uniform mat4 mvp; uniform float att; uniform float z0;\n"
         "varying float v_t;\n"
         "void main() { v_t = exp(att * min(z0 + a_pos.z, 0.0));\n"
         "              gl_Position = mvp * vec4(a_pos, 1.0); }\n",
         "precision mediump float; varying float v_t;\n"
-        "void main() { gl_FragColor = vec4(vec3(v_t), v_t); }\n" };
-    GLenum kind[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
-    GLuint p = glCreateProgram();
-    for (int i = 0; i < 2; i++) {
-        GLuint sh = glCreateShader(kind[i]);
-        glShaderSource(sh, 1, &src[i], NULL);
-        glCompileShader(sh);
-        glAttachShader(p, sh);
-    }
-    glBindAttribLocation(p, 0, "a_pos");
-    glLinkProgram(p);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    return ok ? p : 0;
+        "void main() { gl_FragColor = vec4(vec3(v_t), v_t); }\n");
 }
 
 static void view_of(swell_view *v)
