@@ -361,6 +361,8 @@ void pass_target_size(int vw, int vh, int *w, int *h);
 /* Lengyel's oblique near plane: proj (column-major) made to clip at the eye-space plane c
  * (points with c . (x, y, z, 1) < 0 cut), the camera on that side (c[3] < 0). */
 void pass_oblique_near(float p[16], const double c[4]);
+/* gl_FragCoord to a view pass's map uv: scale xy, offset zw (ocean.frag refl_/refr_screen). */
+void pass_screen_uv(const struct renderer_view *v, float out[4]);
 /* A view pass's field of view is the view's widened by this factor (tan of the half angles),
  * so a ray the waves tilt past the screen's edge still finds its object. */
 #define PASS_MARGIN 1.25f

@@ -148,3 +148,13 @@ void pass_oblique_near(float p[16], const double c[4])
     p[14] = (float)(c[3] * s);
 }
 
+
+/* gl_FragCoord to a view pass's map uv (the view's viewport, the pass's projection widened by
+ * PASS_MARGIN): 0.5 + ndc / (2 m), as scale xy and offset zw. */
+void pass_screen_uv(const struct renderer_view *v, float out[4])
+{
+    out[0] = 1.0f / ((float)v->width * PASS_MARGIN);
+    out[1] = 1.0f / ((float)v->height * PASS_MARGIN);
+    out[2] = 0.5f - (0.5f + (float)v->x / (float)v->width) / PASS_MARGIN;
+    out[3] = 0.5f - (0.5f + (float)v->y / (float)v->height) / PASS_MARGIN;
+}

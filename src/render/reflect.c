@@ -22,7 +22,6 @@
 #include <string.h>
 #include "render/internal.h"
 
-#define REFLECT_MARGIN PASS_MARGIN
 
 /* The atlas of the map's levels (w x 2h RGBA8), the renderer's share. */
 static uint64_t atlas_bytes(int w, int h)
@@ -129,8 +128,8 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     out->camera_pos[1] = v->cam.pos[1];
     out->camera_pos[2] = -v->cam.pos[2];
     memcpy(out->proj, pr, sizeof out->proj);
-    out->proj[0] /= REFLECT_MARGIN;
-    out->proj[5] /= REFLECT_MARGIN;
+    out->proj[0] /= PASS_MARGIN;
+    out->proj[5] /= PASS_MARGIN;
     double cz = v->cam.pos[2] > 0.01 ? v->cam.pos[2] : 0.01;
     /* what lies below the sea plane is not reflected: in the mirrored scene, what is above it,
      * z' > 0, i.e. with q the mirrored point less the camera, -(q_z + c_z) >= 0 kept. In the
@@ -155,10 +154,7 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
      * log2(sigma) */
     float blur = log2f(2.0f * out->proj[5] * (float)r->refl.h);
     /* gl_FragCoord to the flat sea's map uv, 0.5 + ndc / (2 m) */
-    r->refl_screen[0] = 1.0f / ((float)v->width * REFLECT_MARGIN);
-    r->refl_screen[1] = 1.0f / ((float)v->height * REFLECT_MARGIN);
-    r->refl_screen[2] = 0.5f - (0.5f + (float)v->x / (float)v->width) / REFLECT_MARGIN;
-    r->refl_screen[3] = 0.5f - (0.5f + (float)v->y / (float)v->height) / REFLECT_MARGIN;
+    pass_screen_uv(v, r->refl_screen);
     /* gl_FragCoord to the eye-frame view ray (ndc_x / P00, ndc_y / P11, -1), and world -z in
      * the eye frame (the third row of the rotation, negated): its dot with the ray over the
      * ray's length is the sine of the depression, c / D */

@@ -98,10 +98,7 @@ int renderer_refraction_begin(struct renderer *r, const struct renderer_view *v,
      * moves the refracted ray's point at the objects' depth by (1 - 1/n) depth ds (world,
      * horizontal), seen at their distance: uv moves by P (R that) / (2 m dist), R the view's
      * rotation's first two rows */
-    r->refr_screen[0] = 1.0f / ((float)v->width * PASS_MARGIN);
-    r->refr_screen[1] = 1.0f / ((float)v->height * PASS_MARGIN);
-    r->refr_screen[2] = 0.5f - (0.5f + (float)v->x / (float)v->width) / PASS_MARGIN;
-    r->refr_screen[3] = 0.5f - (0.5f + (float)v->y / (float)v->height) / PASS_MARGIN;
+    pass_screen_uv(v, r->refr_screen);
     double g = (1.0 - s) * depth / (2.0 * PASS_MARGIN * dist);
     /* mat2, column-major: column j is world axis j's uv */
     r->refr_shift[0] = (float)(g * pr[0] * vr[0]);
