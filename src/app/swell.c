@@ -69,7 +69,7 @@ static void note_fallback(void *user, const char *msg)
 static int load_tables(struct options *o, struct swell_tables *t, struct swell_err *err)
 {
     if (o->tables_dir) {
-        int rc = tables_load_dir(o->tables_dir, t, err);
+        int rc = tables_load_dir_within(o->tables_dir, o->budget, t, err);
         if (rc)
             return swell_err_context(err, "loading --tables %s", o->tables_dir);
         return SWELL_OK;

@@ -21,6 +21,7 @@
 #include "core/fsutil.h"
 #include "core/parse.h"
 #include "core/preset.h"
+#include "tables/budget.h"
 #include "tables/tables_io.h"
 
 
@@ -264,8 +265,10 @@ static void print_summary(const struct swell_tables *t, const char *dir, double 
            t->whitecap_breaking_fraction, t->foam_recovery_per_s,
            t->whitecap_fraction_measured, t->whitecap_fraction_model,
            whitecap_model_name(t->state.whitecap_model));
-    printf("  GPU bytes %llu (tables %llu + resident %llu) of budget %llu\n",
-           (unsigned long long)(tb + res), (unsigned long long)tb, (unsigned long long)res,
+    printf("  memory: tables %llu bytes (held in RAM, streamed from; with the streamed part and a "
+           "margin %llu); GPU at most %llu (any tier, geometry, quality); budget %llu\n",
+           (unsigned long long)tb, (unsigned long long)(tb + res),
+           (unsigned long long)budget_gpu_bytes(&t->state),
            (unsigned long long)t->state.budget_bytes);
     printf("  wrote %d tables to %s in %.2f s\n", t->count, dir, seconds);
 }
@@ -301,15 +304,15 @@ static int cmd_inspect(int argc, char **argv)
         uint64_t tb = 0;
         for (int i = 0; i < t->count; i++)
             tb += m->entry[i].file_bytes;
-        uint64_t res = bake_resident_bytes(t->patterns, t->state.size_fs);
         printf("  sea state: %s, U10 %.1f m/s towards %.0f deg, fetch %.0f km, depth %s, seed %u\n",
                spectrum_name(t->state.spectrum), t->state.wind_speed_mps, t->state.wind_dir_deg,
                t->state.fetch_km, t->state.depth_m > 0 ? "finite" : "deep", t->state.seed);
         printf("  %d patterns, %d frames over %.1f s; Hs %.2f m; whitecaps %.5f (model %.5f)\n",
                t->patterns, t->frames, t->loop_period_s, t->hs_m, t->whitecap_fraction_measured,
                t->whitecap_fraction_model);
-        printf("  GPU bytes %llu (table files %llu + resident %llu), budget %llu\n",
-               (unsigned long long)(tb + res), (unsigned long long)tb, (unsigned long long)res,
+        printf("  memory: table files %llu bytes (held in RAM, streamed from); GPU at most %llu "
+               "(any tier, geometry, quality); budget %llu\n", (unsigned long long)tb,
+               (unsigned long long)budget_gpu_bytes(&t->state),
                (unsigned long long)t->state.budget_bytes);
     }
     free(m);

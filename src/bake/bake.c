@@ -26,6 +26,7 @@
 
 #include "optics/fresnel.h"
 #include "bake/ocean.h"
+#include "tables/budget.h"
 #include "tables/quantize.h"
 #include "bake/spectrum.h"
 #include "bake/whitecap.h"
@@ -86,14 +87,26 @@ static uint64_t total_bytes(const struct seastate *s, int n_fs, int frames)
            bake_resident_bytes(s->patterns, n_fs);
 }
 
-/* Resolve frames/size_fs/size_geo against the budget (DESIGN.md "Budgets"). */
+/* The renderer's GPU memory for this choice at most (tables/budget.h). */
+static uint64_t gpu_bytes(const struct seastate *s, int n_fs, int frames)
+{
+    struct seastate c = *s;
+    c.size_fs = n_fs;
+    c.frames = frames;
+    c.size_geo = s->size_geo ? s->size_geo : geo_size_for(n_fs);
+    return budget_gpu_bytes(&c);
+}
+
+/* Resolve frames/size_fs/size_geo against the budget (DESIGN.md "Budgets"): the tables with
+ * their streamed part and a margin (held in RAM, streamed from), and the renderer's GPU memory
+ * on any tier and geometry (budget.h), each within it. */
 static int choose_sizes(struct seastate *s, struct swell_err *err)
 {
     int nc = (int)(sizeof size_choices / sizeof size_choices[0]);
     for (int i = 0; i < nc; i++) {
         int n = s->size_fs ? s->size_fs : size_choices[i].n_fs;
         int f = s->frames ? s->frames : size_choices[i].frames;
-        if (total_bytes(s, n, f) <= s->budget_bytes) {
+        if (total_bytes(s, n, f) <= s->budget_bytes && gpu_bytes(s, n, f) <= s->budget_bytes) {
             s->size_fs = n;
             s->frames = f;
             if (!s->size_geo)
@@ -107,13 +120,16 @@ static int choose_sizes(struct seastate *s, struct swell_err *err)
         }
     }
     int n = s->size_fs ? s->size_fs : 32, f = s->frames ? s->frames : 8;
+    uint64_t tables = total_bytes(s, n, f), gpu = gpu_bytes(s, n, f);
+    uint64_t need = tables > gpu ? tables : gpu;
     return swell_fail(err, SWELL_E_BUDGET,
                       "the smallest configuration (%d patterns, %dx%d tables, %d frames) needs "
-                      "%llu bytes but the budget is %llu bytes: raise --budget to at least %llu, "
-                      "or lower --patterns/--frames/--size",
-                      s->patterns, n, n, f, (unsigned long long)total_bytes(s, n, f),
-                      (unsigned long long)s->budget_bytes,
-                      (unsigned long long)total_bytes(s, n, f));
+                      "%llu bytes of tables with their streamed part and %llu of GPU memory but "
+                      "the budget is %llu bytes: raise --budget to at least %llu, or lower "
+                      "--patterns/--frames/--size",
+                      s->patterns, n, n, f, (unsigned long long)tables,
+                      (unsigned long long)gpu, (unsigned long long)s->budget_bytes,
+                      (unsigned long long)need);
 }
 
 static void progress(const struct bake_opts *o, double done, const char *stage)

@@ -19,10 +19,10 @@ struct bake_opts {
 int swell_bake(const struct seastate *state, const struct bake_opts *opts,
                struct swell_tables *out, struct swell_err *err);
 
-/* GPU bytes the renderer holds besides the tables' own bytes: the streamed per-pattern textures
- * (one frame each, with mips) plus a fixed reserve for the sky map (256^2 RGBA8 + mips), the
- * grid's vertex/index buffers and the Fresnel textures' upload. The renderer checks that what it
- * actually allocates stays within this (tests/frame). */
+/* What the size choice charges besides the tables' own bytes (bake.c choose_sizes): the streamed
+ * per-pattern textures (one frame each, with mips) plus a fixed margin. A sizing rule for the
+ * tables held in RAM; the renderer's GPU memory is checked on its own (tables/budget.h
+ * budget_gpu_bytes, tested against the renderer's accounting by tests/frame/test_budget.c). */
 #define SWELL_RENDERER_RESERVE_BYTES (1536u * 1024u)
 uint64_t bake_resident_bytes(int patterns, int n_fs);
 /* Bytes of all tables for a configuration (what the budget charges besides the resident part). */

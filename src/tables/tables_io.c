@@ -1,5 +1,7 @@
 #include "tables/tables_io.h"
 
+#include "tables/budget.h"
+
 #include <dirent.h>
 #include <float.h>
 #include <inttypes.h>
@@ -300,7 +302,10 @@ done:
     return rc;
 }
 
-static int read_manifest(const char *dir, struct tables_manifest *m, struct swell_err *err)
+/* The manifest, checked (set_check.h), and the renderer's GPU memory for the set within budget
+ * (0: the set's own; budget.h), before any table is read. */
+static int read_manifest(const char *dir, uint64_t budget, struct tables_manifest *m,
+                         struct swell_err *err)
 {
     char path[4096];
     int rc = fs_join(path, sizeof path, dir, TABLES_MANIFEST_NAME, err);
@@ -314,6 +319,8 @@ static int read_manifest(const char *dir, struct tables_manifest *m, struct swel
                                  "table set, or a bake was interrupted: re-bake it)", dir);
     rc = manifest_read_memory(buf, len, path, m, err);
     free(buf);
+    if (rc == 0)
+        rc = budget_check(&m->set.state, budget, path, err);
     return rc;
 }
 
@@ -366,11 +373,17 @@ static int refuse_unlisted(void *user, const char *file)
 
 int tables_load_dir(const char *dir, struct swell_tables *out, struct swell_err *err)
 {
+    return tables_load_dir_within(dir, 0, out, err);
+}
+
+int tables_load_dir_within(const char *dir, uint64_t budget, struct swell_tables *out,
+                           struct swell_err *err)
+{
     memset(out, 0, sizeof *out);
     struct tables_manifest *m = calloc(1, sizeof *m);
     if (!m)
         return swell_fail(err, SWELL_E_NOMEM, "cannot allocate the manifest");
-    int rc = read_manifest(dir, m, err);
+    int rc = read_manifest(dir, budget, m, err);
     if (rc)
         goto fail;
     struct unlisted_ctx c = { dir, err, NULL, NULL, 0 };
@@ -436,7 +449,7 @@ int tables_verify_dir(const char *dir, tables_verify_fn fn, void *user,
     struct tables_manifest *m = calloc(1, sizeof *m);
     if (!m)
         return swell_fail(err, SWELL_E_NOMEM, "cannot allocate the manifest");
-    int rc = read_manifest(dir, m, err);
+    int rc = read_manifest(dir, 0, m, err);
     if (rc)
         goto done;
     int first = 0;

@@ -49,6 +49,10 @@ int tables_save_dir(const struct swell_tables *t, const char *dir, struct swell_
  * manifest (present, size, crc32, header agrees) and by the KTX reader; a .ktx file the
  * manifest does not list is refused. All-or-nothing: on failure *out is zeroed. */
 int tables_load_dir(const char *dir, struct swell_tables *out, struct swell_err *err);
+/* The same, refused before any table is read when the renderer's GPU memory for the set
+ * (tables/budget.h) exceeds budget (0: the set's own budget; tables_load_dir). */
+int tables_load_dir_within(const char *dir, uint64_t budget, struct swell_tables *out,
+                           struct swell_err *err);
 
 /* Per-table result for `swell-bake inspect`. */
 struct tables_verify_entry {

@@ -17,6 +17,8 @@
 #     against physics, the state and each other), a table of another bake, extreme scale/bias;
 #  8. a bake owns only what it writes: a folder with other files refused untouched, three
 #     bakes at once leave one whole set, --report inside the set's folder refused.
+#  9. budgets: a bake the renderer would not fit refused; the smallest accepted budget opens with
+#     the patches on every tier; a set over its own or --budget refused from its manifest.
 # Mounting needs root and CAP_SYS_ADMIN; where it is refused the mount cases say why and are
 # skipped, except under CI=true where that is a failure.
 set -u
@@ -507,6 +509,39 @@ for r in "$T/good/r.json" "$T/good" "$T/good/"; do
     check "--report $r with --out $T/good: exit 2 ($out)" \
         sh -c "[ $rc -eq 2 ] && ! [ -e '$T/good/r.json' ] && [ -d '$T/good' ]"
 done
+
+# ---- 9. one budget for the renderer's GPU memory (issue 17 item 4; tables/budget.h) -------------
+# a budget the renderer cannot fit on every tier and geometry kind is refused by the bake, before
+# anything is written (a 2 MiB bake used to say it fitted, then --geometry patches was refused)
+rm -rf "$T/b2"
+out=$("$B" --budget 2M --out "$T/b2" 2>&1); rc=$?
+check "bake --budget 2M: exit 1 naming the GPU memory and the budget to use ($out)" \
+    sh -c "[ $rc -eq 1 ] && printf '%s' '$out' | grep -q 'GPU memory' &&
+        printf '%s' '$out' | grep -q 'raise --budget' && ! [ -e '$T/b2' ]"
+# the smallest budget the bake accepts opens with the patches on every tier (both qualities)
+rm -rf "$T/b34"
+"$B" --budget 3400000 --out "$T/b34" --quiet || bad "bake --budget 3400000"
+for tier in gles2-min gles2-ext gles3; do
+    for q in low high; do
+        out=$(swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/b34" \
+              --geometry patches --tier "$tier" --quality "$q" --out "$T/b34.png" 2>&1); rc=$?
+        check "a 3400000-byte set, --geometry patches, $tier $q: it fits as the bake said" \
+            sh -c "[ $rc -eq 0 ] && [ -s '$T/b34.png' ]"
+    done
+done
+# a set whose own budget the renderer cannot fit (as bakes before this check could write):
+# refused by inspect and by swell from the manifest, before any table is read
+edited "$T/b_over" 's/^state.budget_bytes = .*/state.budget_bytes = 2097152/'
+"$BUILD/tools/manifest-reseal" "$T/b_over/manifest.swell"
+rm -f "$T/b_over/slope_p0.ktx"; mkfifo "$T/b_over/slope_p0.ktx"
+refused "$T/b_over" "GPU memory" "a set whose renderer needs more GPU memory than its budget"
+# swell --budget below what the set needs: refused from the manifest, no table read
+rm -rf "$T/b_run"; cp -r "$T/good" "$T/b_run"
+rm -f "$T/b_run/slope_p0.ktx"; mkfifo "$T/b_run/slope_p0.ktx"
+out=$(swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/b_run" --budget 2M \
+      --out "$T/never.png" 2>&1); rc=$?
+check "swell --budget 2M on a set that needs more: exit 1 naming the GPU memory, before any table ($out)" \
+    sh -c "[ $rc -eq 1 ] && printf '%s' '$out' | grep -q 'GPU memory' && ! [ -e '$T/never.png' ]"
 
 echo "$checks checks, $fails failed"
 [ $fails -eq 0 ]
