@@ -397,6 +397,14 @@ static void print_start(const struct options *o, const struct platform_handle *p
            "%d triangles, %.1f KiB streamed per frame\n", g->bytes / 1048576.0,
            g->budget_bytes / 1048576.0, st.gpu_bytes / 1048576.0, st.vertices, st.triangles,
            st.cpu_bytes_per_frame / 1024.0);
+    /* The display's frame (tables/budget.h: not the sea's, not charged): one colour buffer
+     * offscreen, at least two for KMS page flips, and the depth buffer. */
+    GLint depth_bits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+    int buffers = strcmp(ph->be->name, "kms") == 0 ? 2 : 1;
+    double fb = (double)w * (double)h * (4.0 * buffers + (double)((depth_bits + 7) / 8));
+    printf("swell: frame buffers %.2f MiB (%d colour at %dx%d and %d-bit depth: the display's, "
+           "not in the sea's budget)\n", fb / 1048576.0, buffers, w, h, (int)depth_bits);
     fflush(stdout);
 }
 
