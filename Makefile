@@ -218,6 +218,11 @@ IMAGE_DIFF := $(BUILD)/tools/image-diff
 $(IMAGE_DIFF): $(BUILD)/tools/image_diff.o $(LIB)
 	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
 
+# Mesa's llvmpipe fault with LP_NATIVE_VECTOR_WIDTH=128, shown without swell (gl/gpu.c refuses it)
+$(BUILD)/tools/lp-width-repro: tools/lp_width_repro.c
+	@mkdir -p $(dir $@)
+	$(CC) $(OPT) $(CFLAGS) -o $@ $< $(shell $(PKG_CONFIG) --cflags --libs egl glesv2)
+
 # seals an edited manifest again, so tests/cli/test_bad_input.sh reaches the value checks
 MANIFEST_RESEAL := $(BUILD)/tools/manifest-reseal
 $(MANIFEST_RESEAL): $(BUILD)/tools/manifest_reseal.o $(LIB)
@@ -230,7 +235,7 @@ test-unit: $(UNIT_BIN) all $(MANIFEST_RESEAL)
 # Debian's cross toolchain, its C unit tests under qemu-user, one frame against this machine's
 # (tools/cross-test.sh); CI runs it for arm64
 CROSS_ARCH ?= arm64
-test-cross: all $(IMAGE_DIFF)
+test-cross: all $(IMAGE_DIFF) $(BUILD)/tests/test_golden
 	@tools/cross-test.sh $(CROSS_ARCH) $(BUILD)
 
 # the C unit tests alone, through SWELL_EXEC (a runner for another architecture's programs)

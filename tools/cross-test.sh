@@ -11,7 +11,8 @@
 #     armhf llvmpipe under qemu-arm draws another picture (an orange sky, a grey sea: 172/255,
 #     RMSE 57-63 on every tier) where softpipe on the same build is bit-identical to x86-64's,
 #     so the fault is in llvmpipe's 32-bit ARM code or qemu's emulation of it, not in swell;
-#     the armhf llvmpipe frame is rendered (it must not crash) and its difference printed.
+#     the armhf llvmpipe frame is rendered (it must not crash) and its difference printed;
+#   - on arm64 the five golden scenes (tests/frame/test_golden.c, its tolerance for other CPUs).
 set -eu
 arch=${1:-arm64}
 host=${2:-build/rel}
@@ -51,6 +52,10 @@ GALLIUM_DRIVER=softpipe "$qemu" "$build/swell" $view --out "$tmp/$arch-softpipe.
 "$qemu" "$build/swell" $view --out "$tmp/$arch.png" >/dev/null
 if [ "$arch" = arm64 ]; then
     "$host/tools/image-diff" "$tmp/$arch.png" "$tmp/host.png" 4 1.0
+    # the goldens hold across architectures: test_golden's five scenes drawn by the arm64
+    # build, its tables baked by it, within the tolerance stated there for other CPUs
+    SWELL_BUILD="$build" SWELL_EXEC="$qemu" SWELL_TARGET_ARCH="$arch" SWELL_TMP="$tmp" \
+        "$host/tests/test_golden"
 else
     echo "cross-test: armhf llvmpipe under qemu-arm (not compared, see the top):"
     "$host/tools/image-diff" "$tmp/$arch.png" "$tmp/host.png" 4 1.0 || true

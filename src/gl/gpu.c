@@ -58,6 +58,29 @@ static void copy_gl_string(char *dst, size_t size, GLenum what)
     snprintf(dst, size, "%s", s ? s : "");
 }
 
+/* Driver configurations known to corrupt memory whatever a program draws, refused before the
+ * first draw (a crash is never the answer to bad input). Mesa 22 (Debian 12: 22.3.6): llvmpipe
+ * with LP_NATIVE_VECTOR_WIDTH below 256 on an AVX CPU writes past its own buffers at a draw
+ * (tools/lp_width_repro.c aborts the same way without any of swell's code). */
+static int known_driver_fault(const struct gpu_caps *c, struct swell_err *err)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    const char *w = getenv("LP_NATIVE_VECTOR_WIDTH");
+    const char *mesa = strstr(c->version, "Mesa ");
+    if (w && atoi(w) > 0 && atoi(w) < 256 && strstr(c->renderer, "llvmpipe") && mesa &&
+        atoi(mesa + 5) <= 22 && __builtin_cpu_supports("avx"))
+        return swell_fail(err, SWELL_E_UNSUPPORTED,
+                          "gpu: LP_NATIVE_VECTOR_WIDTH=%s with %s (%s) on this AVX CPU: this "
+                          "Mesa's llvmpipe writes past its own buffers at a draw and aborts "
+                          "(tools/lp_width_repro.c shows it without swell); unset "
+                          "LP_NATIVE_VECTOR_WIDTH or set it to 256", w, c->renderer, c->version);
+#else
+    (void)c;
+    (void)err;
+#endif
+    return SWELL_OK;
+}
+
 int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell_err *err)
 {
     memset(g, 0, sizeof *g);
@@ -71,6 +94,9 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
     if (!c->version[0] || !exts)
         return swell_fail(err, SWELL_E_GL, "gpu: glGetString returned NULL (GL_VERSION or "
                           "GL_EXTENSIONS): no current GLES context; create the platform first");
+    int rc = known_driver_fault(c, err);
+    if (rc)
+        return rc;
     c->context_major = parse_es_major(c->version);
     if (c->context_major < 2)
         return swell_fail(err, SWELL_E_TIER, "gpu: context version '%s' is not OpenGL ES 2.0 or "
@@ -82,7 +108,7 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     GLint range[2] = { 0, 0 }, precision = 0;
     glGetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_HIGH_FLOAT, range, &precision);
-    int rc = gpu_check("gpu: probing limits", err);
+    rc = gpu_check("gpu: probing limits", err);
     if (rc)
         return rc;
 

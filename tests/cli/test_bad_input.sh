@@ -18,7 +18,8 @@
 #  8. a bake owns only what it writes: a folder with other files refused untouched, three
 #     bakes at once leave one whole set, --report inside the set's folder refused.
 #  9. budgets: a bake the renderer would not fit refused; the smallest accepted budget opens with
-#     the patches on every tier; a set over its own or --budget refused from its manifest.
+#     the patches on every tier; a set over its own or --budget refused from its manifest;
+# 10. LP_NATIVE_VECTOR_WIDTH=128 on an AVX CPU (Mesa 22's llvmpipe corrupts its heap) refused.
 # Mounting needs root and CAP_SYS_ADMIN; where it is refused the mount cases say why and are
 # skipped, except under CI=true where that is a failure.
 set -u
@@ -542,6 +543,25 @@ out=$(swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/b_run" -
       --out "$T/never.png" 2>&1); rc=$?
 check "swell --budget 2M on a set that needs more: exit 1 naming the GPU memory, before any table ($out)" \
     sh -c "[ $rc -eq 1 ] && printf '%s' '$out' | grep -q 'GPU memory' && ! [ -e '$T/never.png' ]"
+
+# ---- 10. a driver configuration that corrupts memory whatever is drawn (issue 17) -------------
+# Mesa 22's llvmpipe with LP_NATIVE_VECTOR_WIDTH=128 on an AVX CPU aborted inside every draw
+# ("free(): invalid next size"); tools/lp_width_repro.c does the same without swell. Refused
+# before the first draw; where the CPU has no AVX 128 bits is llvmpipe's own width and draws.
+rm -f "$T/lp.png"
+out=$(LP_NATIVE_VECTOR_WIDTH=128 swell --platform surfaceless --size 64x64 --frames 1 \
+      --tables "$T/good" --out "$T/lp.png" 2>&1); rc=$?
+if grep -qw avx /proc/cpuinfo; then
+    named=0; printf '%s' "$out" | grep -q 'unset LP_NATIVE_VECTOR_WIDTH' && named=1
+    check "LP_NATIVE_VECTOR_WIDTH=128 on an AVX CPU: exit 1 naming it, no frame, no abort ($(printf '%s' "$out" | tail -n 1))" \
+        sh -c "[ $rc -eq 1 ] && [ $named -eq 1 ] && ! [ -e '$T/lp.png' ]"
+else
+    check "LP_NATIVE_VECTOR_WIDTH=128 without AVX (llvmpipe's own width): a frame" \
+        sh -c "[ $rc -eq 0 ] && [ -s '$T/lp.png' ]"
+fi
+out=$(LP_NATIVE_VECTOR_WIDTH=256 swell --platform surfaceless --size 64x64 --frames 1 \
+      --tables "$T/good" --out "$T/lp.png" 2>&1); rc=$?
+check "LP_NATIVE_VECTOR_WIDTH=256: a frame" sh -c "[ $rc -eq 0 ] && [ -s '$T/lp.png' ]"
 
 echo "$checks checks, $fails failed"
 [ $fails -eq 0 ]
