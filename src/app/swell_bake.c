@@ -199,7 +199,7 @@ static int write_report(const char *path, const struct swell_tables *t, double s
         return swell_fail(err, SWELL_E_NOMEM, "report buffer");
     double rx = mss_resolved(t, 0), ry = mss_resolved(t, 1);
     uint64_t tb = tables_bytes(t);
-    uint64_t resident = bake_resident_bytes(t->patterns, t->state.size_fs);
+    uint64_t resident = budget_resident_bytes(t->patterns, t->state.size_fs);
 #define OUT(...) len += (size_t)snprintf(buf + len, len < cap ? cap - len : 0, __VA_ARGS__)
     OUT("{\n  \"generator\": \"swell-bake " SWELL_VERSION_STRING "\",\n");
     OUT("  \"wind_speed_mps\": %.9g,\n  \"spectrum\": \"%s\",\n", t->state.wind_speed_mps,
@@ -250,7 +250,7 @@ static int write_report(const char *path, const struct swell_tables *t, double s
 static void print_summary(const struct swell_tables *t, const char *dir, double seconds)
 {
     double rx = mss_resolved(t, 0), ry = mss_resolved(t, 1);
-    uint64_t tb = tables_bytes(t), res = bake_resident_bytes(t->patterns, t->state.size_fs);
+    uint64_t tb = tables_bytes(t), res = budget_resident_bytes(t->patterns, t->state.size_fs);
     printf("swell-bake: %s, U10 %.1f m/s, fetch %.0f km: Hs %.2f m, mss %.4f (resolved %.4f)\n",
            spectrum_name(t->state.spectrum), t->state.wind_speed_mps, t->state.fetch_km, t->hs_m,
            rx + ry + t->mss_unresolved_x + t->mss_unresolved_y, rx + ry);

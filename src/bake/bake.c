@@ -51,40 +51,11 @@ static int ilog2(int v)
     return l;
 }
 
-static uint64_t rgba8_chain_bytes(int n, int levels)
-{
-    uint64_t b = 0;
-    for (int l = 0; l < levels; l++) {
-        uint64_t s = (uint64_t)(n >> l > 0 ? n >> l : 1);
-        b += s * s * 4;
-    }
-    return b;
-}
-
-uint64_t bake_resident_bytes(int patterns, int n_fs)
-{
-    /* streamed per-pattern slope + whitecap textures (one frame each, full mips) */
-    uint64_t streamed = (uint64_t)patterns * 2 * rgba8_chain_bytes(n_fs, ilog2(n_fs) + 1);
-    return streamed + SWELL_RENDERER_RESERVE_BYTES;
-}
-
-uint64_t bake_table_bytes(int patterns, int n_fs, int n_geo, int frames)
-{
-    struct seastate s = { .patterns = patterns, .size_fs = n_fs, .size_geo = n_geo,
-                          .frames = frames };
-    struct swell_table shape[SWELL_MAX_TABLES];
-    int n = tables_layout(&s, shape);
-    uint64_t bytes = 0;
-    for (int i = 0; i < n; i++)
-        bytes += table_bytes(&shape[i]);
-    return bytes;
-}
-
 static uint64_t total_bytes(const struct seastate *s, int n_fs, int frames)
 {
     int n_geo = s->size_geo ? s->size_geo : geo_size_for(n_fs);
-    return bake_table_bytes(s->patterns, n_fs, n_geo, frames) +
-           bake_resident_bytes(s->patterns, n_fs);
+    return budget_table_bytes(s->patterns, n_fs, n_geo, frames) +
+           budget_resident_bytes(s->patterns, n_fs);
 }
 
 /* The renderer's GPU memory for this choice at most (tables/budget.h). */

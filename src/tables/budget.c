@@ -3,6 +3,35 @@
 
 #include "tables/tables.h"
 
+static uint64_t rgba8_chain_bytes(int n)
+{
+    uint64_t b = 0;
+    for (;;) {
+        b += (uint64_t)n * (uint64_t)n * 4u;
+        if (n <= 1)
+            return b;
+        n /= 2;
+    }
+}
+
+uint64_t budget_resident_bytes(int patterns, int n_fs)
+{
+    /* streamed per-pattern slope + whitecap textures (one frame each, full mips) */
+    return (uint64_t)patterns * 2u * rgba8_chain_bytes(n_fs) + BUDGET_SIZING_MARGIN_BYTES;
+}
+
+uint64_t budget_table_bytes(int patterns, int n_fs, int n_geo, int frames)
+{
+    struct seastate s = { .patterns = patterns, .size_fs = n_fs, .size_geo = n_geo,
+                          .frames = frames };
+    struct swell_table shape[SWELL_MAX_TABLES];
+    int n = tables_layout(&s, shape);
+    uint64_t bytes = 0;
+    for (int i = 0; i < n; i++)
+        bytes += table_bytes(&shape[i]);
+    return bytes;
+}
+
 uint64_t budget_gpu_bytes(const struct seastate *s)
 {
     struct swell_table shape[SWELL_MAX_TABLES];
@@ -24,6 +53,15 @@ int budget_check(const struct seastate *s, uint64_t budget, const char *what,
 {
     if (!budget)
         budget = s->budget_bytes;
+    uint64_t tables = budget_table_bytes(s->patterns, s->size_fs, s->size_geo, s->frames) +
+                      budget_resident_bytes(s->patterns, s->size_fs);
+    if (tables > s->budget_bytes)
+        return swell_fail(err, SWELL_E_BUDGET,
+                          "%s: %d patterns of %dx%d tables over %d frames take %llu bytes with "
+                          "their streamed part, more than the %llu-byte budget the set was baked "
+                          "for: the manifest was not written by swell-bake; re-bake the set",
+                          what, s->patterns, s->size_fs, s->size_fs, s->frames,
+                          (unsigned long long)tables, (unsigned long long)s->budget_bytes);
     uint64_t need = budget_gpu_bytes(s);
     if (need <= budget)
         return SWELL_OK;

@@ -23,12 +23,21 @@
  * measured by tests/frame/test_budget.c, which fails if any combination needs more. */
 #define BUDGET_GPU_FIXED_BYTES (3100u * 1024u)
 
+/* What the bake's size choice charges besides the tables' own bytes (bake.c choose_sizes): the
+ * streamed per-pattern textures (one frame each, with mips) plus a fixed margin. A sizing rule
+ * for the tables held in RAM; the GPU memory is budget_gpu_bytes. */
+#define BUDGET_SIZING_MARGIN_BYTES (1536u * 1024u)
+uint64_t budget_resident_bytes(int patterns, int n_fs);
+/* Bytes of all tables for a configuration (tables_layout). */
+uint64_t budget_table_bytes(int patterns, int n_fs, int n_geo, int frames);
+
 /* The most GPU memory a renderer takes for a set of this resolved state (its tables_layout:
  * one frame of each slope and whitecap table, two of each displacement table, and the fixed
  * part): every tier, geometry kind and quality at the default grids, no passes. */
 uint64_t budget_gpu_bytes(const struct seastate *s);
-/* SWELL_E_BUDGET unless budget_gpu_bytes(s) fits budget (0: s->budget_bytes); the message
- * names what, the bytes and what to do. Checked before anything is read or allocated. */
+/* SWELL_E_BUDGET unless budget_gpu_bytes(s) fits budget (0: s->budget_bytes) and the tables
+ * with the sizing rule's part fit s->budget_bytes (as the bake sized them); the message names
+ * what, the bytes and what to do. Checked before anything is read or allocated. */
 int budget_check(const struct seastate *s, uint64_t budget, const char *what,
                  struct swell_err *err);
 

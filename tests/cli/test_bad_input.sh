@@ -536,6 +536,13 @@ edited "$T/b_over" 's/^state.budget_bytes = .*/state.budget_bytes = 2097152/'
 "$BUILD/tools/manifest-reseal" "$T/b_over/manifest.swell"
 rm -f "$T/b_over/slope_p0.ktx"; mkfifo "$T/b_over/slope_p0.ktx"
 refused "$T/b_over" "GPU memory" "a set whose renderer needs more GPU memory than its budget"
+# tables larger than the budget the manifest says they were baked for (the bake would have made
+# smaller ones): refused from the manifest, before 12 MB of tables are read
+rm -rf "$T/b_def"; "$B" --quiet --out "$T/b_def" || bad "a default bake"
+sed -i 's/^state.budget_bytes = .*/state.budget_bytes = 8388608/' "$T/b_def/manifest.swell"
+"$BUILD/tools/manifest-reseal" "$T/b_def/manifest.swell"
+rm -f "$T/b_def/slope_p0.ktx"; mkfifo "$T/b_def/slope_p0.ktx"
+refused "$T/b_def" "baked for" "a set whose tables exceed the budget it says it was baked for"
 # swell --budget below what the set needs: refused from the manifest, no table read
 rm -rf "$T/b_run"; cp -r "$T/good" "$T/b_run"
 rm -f "$T/b_run/slope_p0.ktx"; mkfifo "$T/b_run/slope_p0.ktx"

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "bake/bake.h"
+#include "tables/budget.h"
 #include "bake/ocean.h"
 #include "tables/quantize.h"
 #include "bake/whitecap.h"
@@ -63,10 +64,10 @@ static void test_budget(void **state)
         s.budget_bytes = budgets[i];
         struct swell_tables t;
         assert_int_equal(swell_bake(&s, NULL, &t, &err), 0);
-        uint64_t total = tables_bytes(&t) + bake_resident_bytes(t.patterns, t.state.size_fs);
+        uint64_t total = tables_bytes(&t) + budget_resident_bytes(t.patterns, t.state.size_fs);
         assert_true(total <= budgets[i]);
         /* the chosen configuration is the one the estimate describes */
-        assert_int_equal(tables_bytes(&t), bake_table_bytes(t.patterns, t.state.size_fs,
+        assert_int_equal(tables_bytes(&t), budget_table_bytes(t.patterns, t.state.size_fs,
                                                             t.state.size_geo, t.frames));
         assert_true(t.frames >= 8);
         tables_destroy(&t);
