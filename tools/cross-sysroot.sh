@@ -15,8 +15,7 @@
 set -eu
 arch=${1:?usage: tools/cross-sysroot.sh ARCH}
 case $arch in
-    armhf) triplet=arm-linux-gnueabihf ;;
-    arm64) triplet=aarch64-linux-gnu ;;
+    armhf|arm64) ;;
     *) echo "cross-sysroot.sh: ARCH is armhf or arm64, not '$arch'" >&2; exit 2 ;;
 esac
 # what swell links (README "Dependencies"), the C library's headers and the unit tests' cmocka
@@ -74,5 +73,5 @@ find "$work/root" -type l | while read -r l; do
 done
 mv "$work/root" "$root"
 rm -rf "$work"
-echo "$n packages for $arch ($triplet) unpacked $(date -u +%Y-%m-%dT%H:%MZ)" > "$root/.complete"
+echo "$n packages for $arch unpacked $(date -u +%Y-%m-%dT%H:%MZ)" > "$root/.complete"
 echo "$root"

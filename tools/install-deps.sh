@@ -25,7 +25,6 @@ clang libclang-rt-14-dev
 jq gnuplot-nox"
 KMS_PKGS="qemu-system-x86 busybox-static linux-image-amd64 kmod xz-utils cpio"
 
-
 want="$PKGS"
 cross=""
 while [ $# -gt 0 ]; do
@@ -38,9 +37,11 @@ while [ $# -gt 0 ]; do
             else echo "swell: no KMS VM kit on $(dpkg --print-architecture): its VM is x86-64 (make test skips test-kms)"; fi ;;
         --cross)
             cross=${2:-}; shift
-            case $cross in arm64|armhf) ;; *) echo "install-deps.sh: --cross arm64|armhf" >&2; exit 2 ;; esac
-            case $cross in arm64) t=aarch64-linux-gnu ;; armhf) t=arm-linux-gnueabihf ;; esac
-            want="$want gcc-$t qemu-user" ;;
+            case $cross in
+                arm64) want="$want gcc-aarch64-linux-gnu qemu-user" ;;
+                armhf) want="$want gcc-arm-linux-gnueabihf qemu-user" ;;
+                *) echo "install-deps.sh: --cross arm64|armhf" >&2; exit 2 ;;
+            esac ;;
         *) echo "usage: tools/install-deps.sh [--test] [--kms] [--cross ARCH]" >&2; exit 2 ;;
     esac
     shift

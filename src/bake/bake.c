@@ -51,21 +51,14 @@ static int ilog2(int v)
     return l;
 }
 
-static uint64_t total_bytes(const struct seastate *s, int n_fs, int frames)
-{
-    int n_geo = s->size_geo ? s->size_geo : geo_size_for(n_fs);
-    return budget_table_bytes(s->patterns, n_fs, n_geo, frames) +
-           budget_resident_bytes(s->patterns, n_fs);
-}
-
-/* The renderer's GPU memory for this choice at most (tables/budget.h). */
-static uint64_t gpu_bytes(const struct seastate *s, int n_fs, int frames)
+/* The choice of n_fs and frames as a resolved state, costed by tables/budget.h. */
+static struct seastate candidate(const struct seastate *s, int n_fs, int frames)
 {
     struct seastate c = *s;
     c.size_fs = n_fs;
     c.frames = frames;
     c.size_geo = s->size_geo ? s->size_geo : geo_size_for(n_fs);
-    return budget_gpu_bytes(&c);
+    return c;
 }
 
 /* Resolve frames/size_fs/size_geo against the budget (DESIGN.md "Budgets"): the tables with
@@ -77,7 +70,8 @@ static int choose_sizes(struct seastate *s, struct swell_err *err)
     for (int i = 0; i < nc; i++) {
         int n = s->size_fs ? s->size_fs : size_choices[i].n_fs;
         int f = s->frames ? s->frames : size_choices[i].frames;
-        if (total_bytes(s, n, f) <= s->budget_bytes && gpu_bytes(s, n, f) <= s->budget_bytes) {
+        struct seastate c = candidate(s, n, f);
+        if (budget_sizing_bytes(&c) <= s->budget_bytes && budget_gpu_bytes(&c) <= s->budget_bytes) {
             s->size_fs = n;
             s->frames = f;
             if (!s->size_geo)
@@ -91,7 +85,8 @@ static int choose_sizes(struct seastate *s, struct swell_err *err)
         }
     }
     int n = s->size_fs ? s->size_fs : 32, f = s->frames ? s->frames : 8;
-    uint64_t tables = total_bytes(s, n, f), gpu = gpu_bytes(s, n, f);
+    struct seastate c = candidate(s, n, f);
+    uint64_t tables = budget_sizing_bytes(&c), gpu = budget_gpu_bytes(&c);
     uint64_t need = tables > gpu ? tables : gpu;
     return swell_fail(err, SWELL_E_BUDGET,
                       "the smallest configuration (%d patterns, %dx%d tables, %d frames) needs "

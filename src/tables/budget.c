@@ -32,6 +32,12 @@ uint64_t budget_table_bytes(int patterns, int n_fs, int n_geo, int frames)
     return bytes;
 }
 
+uint64_t budget_sizing_bytes(const struct seastate *s)
+{
+    return budget_table_bytes(s->patterns, s->size_fs, s->size_geo, s->frames) +
+           budget_resident_bytes(s->patterns, s->size_fs);
+}
+
 uint64_t budget_gpu_bytes(const struct seastate *s)
 {
     struct swell_table shape[SWELL_MAX_TABLES];
@@ -53,8 +59,7 @@ int budget_check(const struct seastate *s, uint64_t budget, const char *what,
 {
     if (!budget)
         budget = s->budget_bytes;
-    uint64_t tables = budget_table_bytes(s->patterns, s->size_fs, s->size_geo, s->frames) +
-                      budget_resident_bytes(s->patterns, s->size_fs);
+    uint64_t tables = budget_sizing_bytes(s);
     if (tables > s->budget_bytes)
         return swell_fail(err, SWELL_E_BUDGET,
                           "%s: %d patterns of %dx%d tables over %d frames take %llu bytes with "

@@ -30,6 +30,8 @@
 uint64_t budget_resident_bytes(int patterns, int n_fs);
 /* Bytes of all tables for a configuration (tables_layout). */
 uint64_t budget_table_bytes(int patterns, int n_fs, int n_geo, int frames);
+/* What the size choice charges for a resolved state: its tables plus budget_resident_bytes. */
+uint64_t budget_sizing_bytes(const struct seastate *s);
 
 /* The most GPU memory a renderer takes for a set of this resolved state (its tables_layout:
  * one frame of each slope and whitecap table, two of each displacement table, and the fixed

@@ -302,8 +302,9 @@ done:
     return rc;
 }
 
-/* The manifest, checked (set_check.h), and the renderer's GPU memory for the set within budget
- * (0: the set's own; budget.h), before any table is read. */
+/* The manifest, checked (set_check.h), and the set's memory (budget.h budget_check: its tables
+ * within the budget it was baked for, the renderer's GPU memory within budget, 0: the set's
+ * own), before any table is read. */
 static int read_manifest(const char *dir, uint64_t budget, struct tables_manifest *m,
                          struct swell_err *err)
 {

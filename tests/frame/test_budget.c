@@ -27,6 +27,7 @@
 #include "render/renderer.h"
 #include "tables/budget.h"
 #include "tables/tables.h"
+#include "frame/frame_util.h"
 
 #define W 96
 #define H 64
@@ -117,24 +118,9 @@ static void test_large(void **state) { (void)state; check_set(48u << 20, 256, 8)
 
 int main(void)
 {
-    struct swell_err err = { 0 };
-    struct platform_desc pd = { .kind = PLATFORM_SURFACELESS, .width = W, .height = H,
-                                .gles_major = 3 };
-    int rc = platform_open(&pd, &ph, &err);
-    if (rc == SWELL_E_UNSUPPORTED || rc == SWELL_E_EGL) {
-        const char *ci = getenv("CI");
-        if (ci && strcmp(ci, "true") == 0) {
-            fprintf(stderr, "test_budget: CI=true and the surfaceless platform failed: %s\n",
-                    err.msg);
-            return 1;
-        }
-        fprintf(stderr, "test_budget: SKIP, no EGL device: %s\n", err.msg);
-        return 77;
-    }
-    if (rc) {
-        fprintf(stderr, "test_budget: platform_open: %s\n", err.msg);
-        return 1;
-    }
+    int rc = frame_open("test_budget", W, H, &ph);
+    if (rc)
+        return rc;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_tiny),
         cmocka_unit_test(test_default),
