@@ -199,9 +199,11 @@ typedef struct swell_view {
     float view[16];             /* world-to-eye, column-major as glUniformMatrix4fv takes it: a
                                  * rotation, any heading and roll, pitch within -89..89 deg;
                                  * its translation is ignored (the eye is camera_pos) */
-    float proj[16];             /* eye-to-clip, column-major: a symmetric perspective, NDC z in
-                                 * [-1, 1] (as gluPerspective or glm_perspective build it); the
-                                 * sea ends at 0.9 x its far plane */
+    float proj[16];             /* eye-to-clip, column-major: a perspective, NDC z in [-1, 1],
+                                 * symmetric (as gluPerspective or glm_perspective build it) or
+                                 * off-axis (glFrustum: a stereo eye, one tile of a wall of
+                                 * displays), its corners within 85 deg of its axis; the sea
+                                 * ends at 0.9 x its far plane */
     int viewport[4];            /* x, y, width, height in pixels of the bound framebuffer */
     unsigned flags;             /* enum swell_draw_flags */
 } swell_view;

@@ -121,6 +121,14 @@ float whitecap_cover(float eps, float mu, float kvar)
     return clamp(0.5 + 0.5 * erf_as((eps - mu) * inversesqrt(2.0 * max(kvar, 1e-6))), 0.0, 1.0);
 }
 
+// ...times a gain g (tables/foam_bias.h: what brings its mean over the sea to the bake's
+// whitecap fraction at the pixel's footprint), within the one clamp.
+float whitecap_cover_gain(float eps, float mu, float kvar, float g)
+{
+    return clamp(g * (0.5 + 0.5 * erf_as((eps - mu) * inversesqrt(2.0 * max(kvar, 1e-6)))), 0.0,
+                 1.0);
+}
+
 // Smith's shadowing/masking of the Ross BRDF for a Gaussian of variance var seen at cos_t:
 // Lambda(a) = (e^{-a^2} / (a sqrt(pi)) - erfc(a)) / 2, a = 1 / (sqrt(2) sigma tan theta), by the
 // rational fit of Walter et al. 2007 (eq. 27, the same Gaussian/Beckmann Lambda; relative error

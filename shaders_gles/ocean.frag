@@ -103,6 +103,8 @@ uniform vec4 wc_trust[4];           // per slot: B and s at V_FOOT = 0, and thei
                                     // unit of it (add_whitecap)
 uniform vec4 wc_lod[4];             // per slot: its whitecaps' weight's terms
 uniform float whitecap_epsilon;     // Dupuy eq. 3 threshold on j
+uniform vec2 foam_gain;             // eq. 6's gain by footprint: x V_FOOT + y (lod.c
+                                    // foam_gain_line)
 uniform vec4 wc_scale[4];
 uniform vec4 wc_bias[4];
 uniform vec3 haze_ray;              // sky.h sky_haze's horizon terms (x exposure); low quality
@@ -600,8 +602,12 @@ void main()
     // (the foam's own slopes are not: foam sits on their crests), times its deviation
     // (foam_detail = 1 / those slots' slope variance x + y, 0 without them).
     vec2 dd = g_ds - g_dsw;
-    float cover = whitecap_cover(whitecap_epsilon,
-                                 g_mu + sqrt(g_dvar * foam_detail.x) * (dd.x + dd.y), g_kvar);
+    // Eq. 6 on the moments of a skewed memory is not the covered fraction: times the gain
+    // that brings its mean over the sea at this footprint to the bake's W (Tessendorf 2023's
+    // fraction from the wind; tables/foam_bias.h), a line over the run's footprints.
+    float cover = whitecap_cover_gain(whitecap_epsilon,
+                                      g_mu + sqrt(g_dvar * foam_detail.x) * (dd.x + dd.y),
+                                      g_kvar, foam_gain.x * V_FOOT + foam_gain.y);
 #else
     float cover = v_base.z;    // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif

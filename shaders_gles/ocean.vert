@@ -154,6 +154,8 @@ uniform vec2 unresolved_var;            // slope variance below every table (Bru
 #if FS_WHITECAPS == 0 || !defined(QUALITY_HIGH)
 uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's, own name: a
                                         // uniform in both stages needs one precision)
+uniform vec2 foam_gain_v;               // eq. 6's gain by footprint over the run (ocean.frag
+                                        // foam_gain's, own name likewise)
 #endif
 varying vec4 v_sun;         // zeta_h - s0, the Ross factor, eq. 25's x weight (low: the Ross
                             // factor over 2 pi sigma_x sigma_y, eq. 26's exponent)
@@ -262,7 +264,8 @@ void main()
     // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
     // moments alone, so it is evaluated here and v_base.z carries it (exact where no pattern
     // is resolved per vertex, as the moments are then the same at every vertex).
-    v_base.zw = vec2(whitecap_cover(whitecap_epsilon_v, k_base.x, k_base.y), 0.0);
+    v_base.zw = vec2(whitecap_cover_gain(whitecap_epsilon_v, k_base.x, k_base.y,
+                                         foam_gain_v.x * geo.x + foam_gain_v.y), 0.0);
 #endif
     // the haze's Mie and Rayleigh weights, its green transmittance, the footprint (the sky
     // map's eq. 27 offset geo.y is derived per pixel from v_lin.zw, ocean.frag)
@@ -278,7 +281,9 @@ void main()
     // and no whitecap table: eq. 6's coverage from the vertex's moments, as high quality's
     // runs without whitecap fetches take it, mixed in with the haze: the pixel's radiance is
     // its clear sea times v_fog.a plus v_fog.rgb.
-    float cover = whitecap_cover(whitecap_epsilon_v, k_base.x, k_base.y);
+    // (times the gain that brings its mean to the bake's W at this footprint, ocean.frag)
+    float cover = whitecap_cover_gain(whitecap_epsilon_v, k_base.x, k_base.y,
+                                      foam_gain_v.x * geo.x + foam_gain_v.y);
     v_fog = vec4(fog + foam_radiance * (cover * geo.z), (1.0 - cover) * geo.z);
 #endif
 #define SLOT_UV(i) (pattern_uv_offset[i] + rest * pattern_inv_size[i])

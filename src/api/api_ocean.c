@@ -2,7 +2,6 @@
  * drawn with the application's camera matrices into its framebuffer, the GL state it changes
  * restored (gl/glstate.h). */
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 #include "api/api.h"
 #include "gl/glstate.h"
@@ -88,10 +87,18 @@ static int view_camera(const swell_view *v, struct camera *c, struct swell_err *
     if (fabs(fwd[2] / fl) > 0.99985)
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the view looks straight up or "
                           "down (within 1 deg): keep its pitch within -89..89 deg");
-    if (p[3] != 0.0f || p[7] != 0.0f || p[11] != -1.0f || p[15] != 0.0f ||
-        fabs(p[8]) > 1e-4 || fabs(p[9]) > 1e-4 || !(p[0] > 0.0f) || !(p[5] > 0.0f))
+    if (p[3] != 0.0f || p[7] != 0.0f || p[11] != -1.0f || p[15] != 0.0f || p[1] != 0.0f ||
+        p[4] != 0.0f || !(p[0] > 0.0f) || !(p[5] > 0.0f) || !isfinite(p[8]) || !isfinite(p[9]))
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the projection is not a "
-                          "symmetric perspective (as gluPerspective builds)");
+                          "perspective (as gluPerspective or glFrustum builds)");
+    /* the frustum's edges as tangents from the axis (renderer_view_frame), its corners within
+     * 85 deg of it: the projected grid's rays stay within 81 deg of its own */
+    double tx = fmax(fabs((-1.0 + p[8]) / p[0]), fabs((1.0 + p[8]) / p[0]));
+    double ty = fmax(fabs((-1.0 + p[9]) / p[5]), fabs((1.0 + p[9]) / p[5]));
+    if (!(atan(sqrt(tx * tx + ty * ty)) < 85.0 * M_PI / 180.0))
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the projection's frustum reaches "
+                          "%.1f deg from its axis at a corner (at most 85: narrow the field of "
+                          "view or its offset)", atan(sqrt(tx * tx + ty * ty)) * 180.0 / M_PI);
     double n = p[14] / (p[10] - 1.0), f = p[14] / (p[10] + 1.0);
     if (!(n > 0.0) || !(f > n) || !isfinite(f))
         return swell_fail(err, SWELL_E_ARG, "swell_ocean_draw: the projection's clip planes "

@@ -401,6 +401,8 @@ int swell_bake(const struct seastate *state, const struct bake_opts *opts,
             goto fail;
         }
 
+    foam_bias_compute(out, &out->foam_bias);    /* eq. 6's gains (tables/foam_bias.h) */
+    out->has_foam_bias = 1;
     progress(opts, 1.0, "done");
     return 0;
 

@@ -150,6 +150,11 @@ void camera_frame_make(const struct camera *c, int width, int height, struct cam
     camera_clip_planes(c, &out->near_m, &out->far_m);
     float fov_deg = c->fov_y_deg > 0.0f ? c->fov_y_deg : CAMERA_FOV_DEFAULT_DEG;
     out->fov_y_rad = fov_deg * M_PI / 180.0;
+    double ty = tan(0.5 * out->fov_y_rad), tx = ty * out->aspect;
+    out->tan_lrbt[0] = -tx;
+    out->tan_lrbt[1] = tx;
+    out->tan_lrbt[2] = -ty;
+    out->tan_lrbt[3] = ty;
     camera_basis(c->heading_deg, c->pitch_deg, out->fwd, out->right, out->up);
     if (c->roll_deg != 0.0f) {
         double r = c->roll_deg * M_PI / 180.0, cr = cos(r), sr = sin(r);

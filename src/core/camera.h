@@ -67,6 +67,10 @@ struct camera_frame {
     float aspect;               /* width / height (1 without a height) */
     float near_m, far_m;        /* camera_clip_planes */
     double fov_y_rad;           /* the vertical field of view, the default applied */
+    double tan_lrbt[4];         /* the frustum's edges, tangents from the view axis: left,
+                                 * right, bottom, top (camera_frame_make: symmetric, -t a, t a,
+                                 * -t, t with t = tan(fov / 2), a the aspect; an application's
+                                 * off-axis projection moves them, renderer_view_frame) */
     double fwd[3], right[3], up[3];  /* the view's orthonormal basis, world axes (rolled) */
     float pixel_rad;            /* one pixel's vertical angle, rad: 2 tan(fov / 2) / height */
     double footprint_alt_m;     /* altitude for pixel footprints, >= CAMERA_FOOTPRINT_MIN_ALT_M */

@@ -38,8 +38,8 @@ static double dot3(const double a[3], const double b[3])
  * the largest sideways displacement (a square of half-side chop), is convex, so the convex hull
  * of these points contains it. Returns the number of points. */
 static int frustum_slab_points(const double fwd[3], const double right[3], const double up[3],
-                               double tx, double ty, double n, double f, double zlo, double zhi,
-                               double chop, double q[HULL_MAX][2])
+                               const double tan_lrbt[4], double n, double f, double zlo,
+                               double zhi, double chop, double q[HULL_MAX][2])
 {
     double c[8][3];
     static const int edge[12][2] = { { 0, 1 }, { 1, 3 }, { 3, 2 }, { 2, 0 }, { 4, 5 }, { 5, 7 },
@@ -47,9 +47,9 @@ static int frustum_slab_points(const double fwd[3], const double right[3], const
     double pts[32][2];
     int np = 0, nq = 0;
     for (int k = 0; k < 8; k++) {
-        double a = k & 1 ? 1.0 : -1.0, b = k & 2 ? 1.0 : -1.0, d = k & 4 ? f : n;
+        double a = tan_lrbt[k & 1], b = tan_lrbt[k & 2 ? 3 : 2], d = k & 4 ? f : n;
         for (int e = 0; e < 3; e++)
-            c[k][e] = d * (fwd[e] + a * tx * right[e] + b * ty * up[e]);
+            c[k][e] = d * (fwd[e] + a * right[e] + b * up[e]);
         if (c[k][2] >= zlo && c[k][2] <= zhi) {
             pts[np][0] = c[k][0];
             pts[np++][1] = c[k][1];
@@ -127,7 +127,6 @@ static int projection_frame(const struct grid *g, const struct camera_frame *vie
     double q[HULL_MAX][2];
     float near_m = view->near_m, far_m = view->far_m;
     memset(p, 0, sizeof(*p));
-    double ty = tan(0.5 * view->fov_y_rad), tx = ty * view->aspect;
     p->alt = cam->pos[2];
     p->dmax = far_distance(g, view);
     /* The sea lies on a sphere: at distance r it is r^2 / (2 R) lower, so the slab's floor is
@@ -137,7 +136,7 @@ static int projection_frame(const struct grid *g, const struct camera_frame *vie
     int nq = 0;
     for (int pass = 0; pass < 3; pass++) {
         double r = fmin(reach, p->dmax);
-        nq = frustum_slab_points(cf, cr, cu, tx, ty, near_m, far_m,
+        nq = frustum_slab_points(cf, cr, cu, view->tan_lrbt, near_m, far_m,
                                  -p->alt - g->crest_m - sphere_drop((float)(r * r)),
                                  -p->alt + g->crest_m, g->chop_m, q);
         for (int k = 0; k < nq; k++)
@@ -190,10 +189,9 @@ static int projection_frame(const struct grid *g, const struct camera_frame *vie
     /* The screen's part of the range: its side edges' angle, and its bottom edge's ray where
      * it meets the sea plane, seen from the projector. Those spans get SCREEN_SHARE of the
      * columns and rows (more where uniform angles would give them more). */
-    double sx = fmin(atan(tx), fmax(x1, -x1)), sb = y0;
-    double bot[3];
+    double sb = y0, bot[3];
     for (int c = 0; c < 3; c++)
-        bot[c] = cf[c] - ty * cu[c];
+        bot[c] = cf[c] + view->tan_lrbt[2] * cu[c];
     if (bot[2] < 0.0 && p->alt > 0.0) {
         double t = p->alt / -bot[2], d[3] = { t * bot[0], t * bot[1], -p->alt_ray };
         double fz = dot3(d, p->fwd);
@@ -210,7 +208,8 @@ static int projection_frame(const struct grid *g, const struct camera_frame *vie
     /* the margin's share: what uniform projector angles would give it, at most 1 - SCREEN_SHARE */
     p->row_split = sb > y0 ? fmax(SCREEN_SHARE, (y1 - sb) / (y1 - y0)) : 1.0;
     horizon_rows(p, g->h);
-    double c0 = fmax(-sx, x0), c1 = fmin(sx, x1), span = x1 - x0;
+    double c0 = fmin(fmax(atan(view->tan_lrbt[0]), x0), x1);
+    double c1 = fmax(fmin(atan(view->tan_lrbt[1]), x1), c0), span = x1 - x0;
     double inner = fmax(SCREEN_SHARE, (c1 - c0) / span);
     double side_l = c0 - x0, side_r = x1 - c1;
     p->col_ang[0] = x0;

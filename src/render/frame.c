@@ -31,16 +31,17 @@ static void sea_light(const struct renderer *r, float sun[3], float sea[3], floa
 
 /* gl_FragCoord (fx, fy, 1) -> the flat sea's point (z = 0) under the pixel, relative to the
  * camera and homogeneous: (h d_x, h d_y, -d_z) with d the view ray in the world and h the
- * camera's height; its w > 0 below the horizon. For a symmetric perspective (the wake's and
- * the shadow's lookups: wake.c, shadow.c). */
+ * camera's height; its w > 0 below the horizon. For a perspective, off-axis or not (the
+ * wake's and the shadow's lookups: wake.c, shadow.c). */
 void screen_to_sea(const struct camera_frame *view, double q[3][3])
 {
     double h = view->cam.pos[2] > 0.01 ? view->cam.pos[2] : 0.01;
     double p0 = view->proj[0][0], p1 = view->proj[1][1];
-    /* the eye-frame ray e = E (fx, fy, 1) */
+    double p8 = view->proj[2][0], p9 = view->proj[2][1];
+    /* the eye-frame ray e = E (fx, fy, 1): x / -z = (ndc + P20) / P00 */
     double e[3][3] = {
-        { 2.0 / (view->width * p0), 0.0, -(1.0 + 2.0 * view->x / view->width) / p0 },
-        { 0.0, 2.0 / (view->height * p1), -(1.0 + 2.0 * view->y / view->height) / p1 },
+        { 2.0 / (view->width * p0), 0.0, -(1.0 + 2.0 * view->x / view->width - p8) / p0 },
+        { 0.0, 2.0 / (view->height * p1), -(1.0 + 2.0 * view->y / view->height - p9) / p1 },
         { 0.0, 0.0, -1.0 },
     };
     /* d = R^T e, R the view's rotation (view_rel, [col][row]) */
@@ -369,6 +370,14 @@ void renderer_view_frame(const struct renderer_view *v, const struct camera *cam
     if (v->proj) {
         memcpy(view->proj, v->proj, sizeof view->proj);
         view->aspect = view->proj[1][1] / view->proj[0][0];
+        /* the edges ndc = +-1 of a perspective, off-axis or not: ndc = P00 x / -z - P20, so
+         * x / -z = (ndc + P20) / P00 */
+        double p0 = view->proj[0][0], p1 = view->proj[1][1];
+        double p8 = view->proj[2][0], p9 = view->proj[2][1];
+        view->tan_lrbt[0] = (-1.0 + p8) / p0;
+        view->tan_lrbt[1] = (1.0 + p8) / p0;
+        view->tan_lrbt[2] = (-1.0 + p9) / p1;
+        view->tan_lrbt[3] = (1.0 + p9) / p1;
     }
     if (v->view || v->proj)
         glm_mat4_mul(view->proj, view->view_rel, view->world_to_clip);

@@ -35,7 +35,7 @@ enum ocean_uniform {
     OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
     OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_REFL_TEX, OU_REFL_MAT,
     OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
-    OU_REFL_LEVELS, OU_REFL_UP, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM,
+    OU_REFL_LEVELS, OU_REFL_UP, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM, OU_FOAM_GAIN, OU_FOAM_GAIN_V,
     OU_WAKE_WARP, OU_SHADOW_TEX, OU_SHADOW_MAT, OU_SHADOW_SEA, OU_SHADOW_FOAM,
     OU_REFR_TEX, OU_REFR_SCREEN, OU_REFR_SHIFT, OU_REFR_TAU,
     OU_COUNT
@@ -208,6 +208,7 @@ struct renderer {
     int nfs;                          /* patterns shaded from textures, largest first */
     int nwc;                          /* leading slots whose whitecaps are fetched (high) */
     unsigned cpu_mask;                /* patterns resolved per vertex */
+    struct foam_bias foam_bias;       /* eq. 6's gains (the set's, or found at create) */
     unsigned k_mask;                  /* low quality, CPU grid: fragment patterns whose
                                        * whitecap moments the grid resolves per vertex
                                        * (grid.h k_patterns; not the patch's constants) */
@@ -366,6 +367,10 @@ void pass_screen_uv(const struct renderer_view *v, float out[4]);
 /* A view pass's field of view is the view's widened by this factor (tan of the half angles),
  * so a ray the waves tilt past the screen's edge still finds its object. */
 #define PASS_MARGIN 1.25f
+/* The view's projection (column-major) widened by PASS_MARGIN about its frustum's centre
+ * (off-axis or not: P00, P11 and the offsets P20, P21 over m), so the pass's ndc is the
+ * view's over m at every pixel (pass_screen_uv). */
+void pass_widen(float p[16]);
 
 /* refract.c */
 int  refract_create(struct renderer *r, struct swell_err *err);

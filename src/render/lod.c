@@ -311,10 +311,29 @@ static void wc_trust_terms(const struct fs_slot *sl, float blur, float tr[4], fl
     tr[3] = 1.0f - blur;
 }
 
+/* eq. 6's gain (tables/foam_bias.h) as a line in the footprint through its values half a level
+ * nearer than the run's nearest row and one farther than its farthest (as the variance's
+ * knots; a row's vertices off the screen's centre lie farther): ocean.frag foam_gain,
+ * ocean.vert foam_gain_v, unclamped (two instructions fewer: with them VideoCore VI spilled
+ * a register in a high-quality program) */
+static void foam_gain_line(const struct renderer *r, float lf_near, float lf_far, float out[2])
+{
+    float f0 = lf_near - 0.5f, f1 = fmaxf(lf_far + 1.0f, f0 + 0.5f);
+    float g0 = foam_bias_at(&r->foam_bias, f0), g1 = foam_bias_at(&r->foam_bias, f1);
+    out[0] = (g1 - g0) / (f1 - f0);
+    out[1] = g0 - out[0] * f0;
+}
+
 void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, float pix,
                    float lf_far, float lf_near)
 {
     const GLint *u = r->ou[VARIANT(k, kw)];
+    {
+        float gain[2];
+        foam_gain_line(r, lf_near, lf_far, gain);
+        glUniform2fv(u[OU_FOAM_GAIN], 1, gain);
+        glUniform2fv(u[OU_FOAM_GAIN_V], 1, gain);
+    }
     float sl_lod[SWELL_MAX_PATTERNS][4] = { { 0 } }, wc_lod[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float smu[SWELL_MAX_PATTERNS][4] = { { 0 } }, wmu[SWELL_MAX_PATTERNS][4] = { { 0 } };
     float svar[SWELL_MAX_PATTERNS][2] = { { 0 } }, cmax[SWELL_MAX_PATTERNS][2] = { { 0 } };

@@ -149,6 +149,14 @@ void pass_oblique_near(float p[16], const double c[4])
 }
 
 
+void pass_widen(float p[16])
+{
+    p[0] /= PASS_MARGIN;
+    p[5] /= PASS_MARGIN;
+    p[8] /= PASS_MARGIN;
+    p[9] /= PASS_MARGIN;
+}
+
 /* gl_FragCoord to a view pass's map uv (the view's viewport, the pass's projection widened by
  * PASS_MARGIN): 0.5 + ndc / (2 m), as scale xy and offset zw. */
 void pass_screen_uv(const struct renderer_view *v, float out[4])

@@ -22,7 +22,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "var_knot_v",
     "var_knot_frame_v", "sky_run_lod", "sky_run_blk", "wc_trust", "foam_detail", "refl_tex", "refl_mat",
     "refl_screen", "refl_ray", "refl_down", "refl_blur", "refl_levels",
-    "refl_up", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam",
+    "refl_up", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam", "foam_gain", "foam_gain_v",
     "wake_warp", "shadow_tex", "shadow_mat", "shadow_sea", "shadow_foam",
     "refr_tex", "refr_screen", "refr_shift", "refr_tau"
 };

@@ -128,8 +128,7 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     out->camera_pos[1] = v->cam.pos[1];
     out->camera_pos[2] = -v->cam.pos[2];
     memcpy(out->proj, pr, sizeof out->proj);
-    out->proj[0] /= PASS_MARGIN;
-    out->proj[5] /= PASS_MARGIN;
+    pass_widen(out->proj);
     double cz = v->cam.pos[2] > 0.01 ? v->cam.pos[2] : 0.01;
     /* what lies below the sea plane is not reflected: in the mirrored scene, what is above it,
      * z' > 0, i.e. with q the mirrored point less the camera, -(q_z + c_z) >= 0 kept. In the
@@ -140,12 +139,13 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     out->viewport[3] = r->refl.h;
 
     /* ocean.frag: the reflected ray r, mirrored (S r), in the eye frame (V), to the map's uv
-     * times w: u w = (P00 / m e_x - e_z) / 2, v w = (P11 / m e_y - e_z) / 2, w = -e_z */
+     * times w: u w = (P00 e_x + P20 e_z - e_z) / 2, v w = (P11 e_y + P21 e_z - e_z) / 2,
+     * w = -e_z, P the pass's (pass_widen) */
     for (int k = 0; k < 3; k++) {
         float s = k == 2 ? -1.0f : 1.0f;
         float ex = vr[4 * k + 0] * s, ey = vr[4 * k + 1] * s, ez = vr[4 * k + 2] * s;
-        r->refl_mat[3 * k + 0] = 0.5f * (out->proj[0] * ex - ez);
-        r->refl_mat[3 * k + 1] = 0.5f * (out->proj[5] * ey - ez);
+        r->refl_mat[3 * k + 0] = 0.5f * (out->proj[0] * ex + out->proj[8] * ez - ez);
+        r->refl_mat[3 * k + 1] = 0.5f * (out->proj[5] * ey + out->proj[9] * ez - ez);
         r->refl_mat[3 * k + 2] = -ez;
     }
     /* eq. 27's footprint 2 sigma du/dzeta: a slope deviation sigma turns the reflected ray by
@@ -155,13 +155,14 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     float blur = log2f(2.0f * out->proj[5] * (float)r->refl.h);
     /* gl_FragCoord to the flat sea's map uv, 0.5 + ndc / (2 m) */
     pass_screen_uv(v, r->refl_screen);
-    /* gl_FragCoord to the eye-frame view ray (ndc_x / P00, ndc_y / P11, -1), and world -z in
+    /* gl_FragCoord to the eye-frame view ray ((ndc_x + P20) / P00, (ndc_y + P21) / P11, -1),
+     * and world -z in
      * the eye frame (the third row of the rotation, negated): its dot with the ray over the
      * ray's length is the sine of the depression, c / D */
     r->refl_ray[0] = 2.0f / ((float)v->width * pr[0]);
     r->refl_ray[1] = 2.0f / ((float)v->height * pr[5]);
-    r->refl_ray[2] = -(1.0f + 2.0f * (float)v->x / (float)v->width) / pr[0];
-    r->refl_ray[3] = -(1.0f + 2.0f * (float)v->y / (float)v->height) / pr[5];
+    r->refl_ray[2] = -(1.0f + 2.0f * (float)v->x / (float)v->width - pr[8]) / pr[0];
+    r->refl_ray[3] = -(1.0f + 2.0f * (float)v->y / (float)v->height - pr[9]) / pr[5];
     for (int i = 0; i < 3; i++)
         r->refl_down[i] = -vr[8 + i];   /* -V (0, 0, 1)^T's row: world z of an eye vector */
     /* c / D_o, 0 for objects at infinity (ocean.frag's parallax factor) */

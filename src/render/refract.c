@@ -80,8 +80,7 @@ int renderer_refraction_begin(struct renderer *r, const struct renderer_view *v,
     out->camera_pos[1] = v->cam.pos[1];
     out->camera_pos[2] = cz / s;
     memcpy(out->proj, pr, sizeof out->proj);
-    out->proj[0] /= PASS_MARGIN;
-    out->proj[5] /= PASS_MARGIN;
+    pass_widen(out->proj);
     /* keep what lies under the sea plane: with e the eye-space point, p = c' + S^-1 V^T e, so
      * s p_z = cz + V's third column . e, < 0 */
     double plane[4] = { -vr[8], -vr[9], -vr[10], -cz };

@@ -164,6 +164,10 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     r->gpu = desc->gpu;
     r->t = desc->tables;
     assign_patterns(r);
+    if (r->t->has_foam_bias)
+        r->foam_bias = r->t->foam_bias;
+    else
+        foam_bias_compute(r->t, &r->foam_bias);
     r->vtf = choose_vtf(r);
     r->cpu_vterms = !r->vtf && r->d.cpu_vertex_terms;
     r->run_lod = r->gpu->caps.prefer_run_lod && !r->d.pixel_lod;

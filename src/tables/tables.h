@@ -17,6 +17,7 @@
 #include <stdint.h>
 #include "core/err.h"
 #include "core/seastate.h"
+#include "tables/foam_bias.h"
 
 #define SWELL_MAX_TABLES   32
 #define TABLES_FRESNEL_SIZE 64  /* side of both Fresnel tables (one layer, one level) */
@@ -90,6 +91,10 @@ struct swell_tables {
                                           with coverage for opacity): P(sum m_i < epsilon) */
     int count;
     struct swell_table table[SWELL_MAX_TABLES];
+    /* not in the files: eq. 6's gains by footprint (foam_bias.h), filled by the loader and the
+     * bake (has_foam_bias 1); a set built otherwise has none, and the renderer finds its own */
+    struct foam_bias foam_bias;
+    int has_foam_bias;
 };
 
 size_t table_bytes(const struct swell_table *t);           /* all levels and layers */

@@ -397,6 +397,8 @@ int tables_load_dir_within(const char *dir, uint64_t budget, struct swell_tables
         if (rc)
             goto fail;
     }
+    foam_bias_compute(out, &out->foam_bias);
+    out->has_foam_bias = 1;
     free(m);
     return 0;
 fail:

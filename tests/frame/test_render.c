@@ -149,6 +149,7 @@ static int g_debug_variants; /* renderer_desc.debug_variants */
 static unsigned g_refuse_detile; /* renderer_desc.probe_refuse_detile */
 static unsigned g_refuse_gpu_vertex; /* renderer_desc.probe_refuse_gpu_vertex */
 static int g_cpu_vterms;     /* renderer_desc.cpu_vertex_terms */
+static int g_linear;         /* renderer_desc.linear_output */
 static int g_cpu_vterms_used; /* renderer_stats.cpu_vertex_terms of the last render */
 
 static void render(int tier, int quality, int geometry, float sun_elev, float sun_azim,
@@ -182,6 +183,7 @@ static void render(int tier, int quality, int geometry, float sun_elev, float su
     d.probe_refuse_detile = g_refuse_detile;
     d.probe_refuse_gpu_vertex = g_refuse_gpu_vertex;
     d.cpu_vertex_terms = g_cpu_vterms;
+    d.linear_output = g_linear;
     d.detile = g_detile_mode ? g_detile_mode - 1 : g_no_detile ? DETILE_MODE_OFF : DETILE_MODE_ON;
     rc = renderer_create(&d, &r, &err);
     if (rc)
@@ -1057,10 +1059,12 @@ static void test_fetch_runs(void **state)
  * means are nearly flat well before the 1x1 level (renderer.c DROP_RESOLVED): runs drop it
  * there, fading its texture out over the octave of footprint before (ocean.frag slot_weight)
  * and moving the variance its means held into the pixel's, and the mean radiance stays that
- * of runs that keep it to its 1x1 level: the mean luminance of every 8 rows within 3 levels
- * (measured 0.43-2.49; the texture the runs that keep it still show there differs pixel by
- * pixel: RMSE < 3.5, measured 1.03-3.01, which was 0.47-1.33 when the drop was a hard step,
- * a seam of 2.5-7x in texture energy; test_seams holds the continuity). Every LOD path: the
+ * of runs that keep it to its 1x1 level: the mean luminance of every 8 rows within 3.5 levels
+ * (measured 0.18-3.01; 0.43-2.49 before eq. 6's gains, tables/foam_bias.h, drew the far foam
+ * 1.1-1.25x: the whitecaps the keeping runs fetch at 2x2 levels, and alias, differ from the
+ * constants by as much more; the texture the runs that keep it still show there differs pixel
+ * by pixel: RMSE < 4, measured 0.48-3.60, 1.03-3.01 before the gains, 0.47-1.33 when the drop
+ * was a hard step, a seam of 2.5-7x in texture energy; test_seams holds the continuity). Every LOD path: the
  * per-pixel LOD of GPUs, and llvmpipe's one level per run (per-level textures), each at
  * gles2-min (mediump) and gles3. (Every pattern fetched everywhere is no reference here: at
  * 1 km the small patterns' whitecaps alias at their 2x2 levels, and in mediump their
@@ -1101,8 +1105,8 @@ static void test_resolved_drop(void **state)
             print_message("  the largest difference of 8 rows' mean luminance: %.2f at row "
                           "%d\n", bm, band);
             assert_true(g_draws_resolved_drop > 0);
-            assert_true(rmse < 3.5);
-            assert_true(bm < 3.0);
+            assert_true(rmse < 4.0);
+            assert_true(bm < 3.5);
         }
 }
 
@@ -1163,6 +1167,92 @@ static void test_foam_lod_paths(void **state)
                       (double)view[v][0], (double)-view[v][1], 100.0 * worst, at, at + 7);
         assert_true(worst < 0.03);
     }
+}
+
+/* The foam's drawn coverage in view cam: three linear frames of the same sea, A as it is, B
+ * with no foam (epsilon far below every memory), C all foam (far above, eq. 6's gain 1): every
+ * pixel is (1 - c) B + c C, so c = (A - B) / (C - B) in green where the foam stands out from
+ * the sea (C - B > 0.05, glitter and haze excepted); their mean. gain1: the gains off in A too
+ * (the coverage before foam_bias). */
+static double drawn_cover(int quality, const struct camera *cam, double t, int gain1)
+{
+    const struct swell_tables keep = fx.tables;
+    static uint8_t b[W * H * 4];
+    g_linear = 1;
+    /* all foam first, at an exposure that leaves it below white (linear output clips at 1) */
+    fx.tables.whitecap_epsilon = 1e4f;
+    for (int j = 0; j < FOAM_BIAS_KNOTS; j++)
+        fx.tables.foam_bias.gain[j] = 1.0f;
+    for (g_exposure = 256.0f;; g_exposure *= 0.5f) {
+        render(TIER_GLES2_MIN, quality, GEOMETRY_GRID, 30.0f, 100.0f, cam, t, fx.img2, NULL);
+        int top = 0;
+        for (int i = 0; i < W * H; i++)
+            top = fx.img2[4 * i + 1] > top ? fx.img2[4 * i + 1] : top;
+        if (top < 250 || g_exposure < 1e-6f)
+            break;
+    }
+    fx.tables.whitecap_epsilon = -1e4f;
+    render(TIER_GLES2_MIN, quality, GEOMETRY_GRID, 30.0f, 100.0f, cam, t, b, NULL);
+    fx.tables = keep;
+    if (gain1)
+        for (int j = 0; j < FOAM_BIAS_KNOTS; j++)
+            fx.tables.foam_bias.gain[j] = 1.0f;
+    render(TIER_GLES2_MIN, quality, GEOMETRY_GRID, 30.0f, 100.0f, cam, t, fx.img, NULL);
+    fx.tables = keep;
+    g_linear = 0;
+    g_exposure = 0.0f;
+    double acc = 0.0;
+    long n = 0;
+    for (int i = 0; i < W * H; i++) {
+        double a = fx.img[4 * i + 1], s = b[4 * i + 1], f = fx.img2[4 * i + 1];
+        if (f - s > 0.1 * 255.0) {
+            acc += (a - s) / (f - s);
+            n++;
+        }
+    }
+    return n > W * H / 8 ? acc / (double)n : -1.0;
+}
+
+/* Issue 14: the foam's amount follows the wind at every distance. Dupuy eq. 6 on the mip-
+ * filtered moments of the skewed foam memory draws less than the bake's whitecap fraction W,
+ * by a factor that changes with the footprint (tables/foam_bias.c); the renderer takes eq. 6
+ * times the gain that brings its mean to W at each footprint. Drawn coverage, averaged over
+ * four times of the loop, from 300 m and 3 km up: 0.73-1.07 W (without the gains 0.29-0.93 W),
+ * held within [0.75, 1.33] W for 8 and 15 m/s in both qualities... except 8 m/s high from 3 km,
+ * 0.73: held at 0.7 there. From 20 m up 0.51-0.65 W (without 0.38-0.58 W), held above 0.45:
+ * up close high quality draws the foam below a texel as detail from finer waves' slopes, and
+ * those slopes are partly filtered at the pixel's level, so the detail's variance falls short
+ * of what it stands for (ocean.frag foam_detail takes the patches' T). */
+static void test_foam_amount(void **state)
+{
+    (void)state;
+    static const float winds[2] = { 8.0f, 15.0f };
+    static const double alt[3] = { 20.0, 300.0, 3000.0 }, pitch[3] = { -20.0, -15.0, -12.0 };
+    g_no_detile = 1;
+    for (int w = 0; w < 2; w++) {
+        use_baked(SWELL_BUDGET_DEFAULT, winds[w]);
+        double target = fx.tables.whitecap_fraction_measured;
+        for (int q = 0; q < 2; q++)
+            for (int v = 0; v < 3; v++) {
+                struct camera c;
+                camera_defaults(&c);
+                c.pos[0] = 311.0 * v;
+                c.pos[2] = alt[v];
+                c.pitch_deg = (float)pitch[v];
+                double now = 0.0, before = 0.0;
+                for (int k = 0; k < 4; k++) {
+                    double t = 1.37 * k;
+                    now += drawn_cover(q ? QUALITY_LOW : QUALITY_HIGH, &c, t, 0) / 4.0;
+                    before += drawn_cover(q ? QUALITY_LOW : QUALITY_HIGH, &c, t, 1) / 4.0;
+                }
+                print_message("foam, %.0f m/s, %s, %.0f m up: drawn coverage %.2f W (without "
+                              "eq. 6's gain %.2f W; W = %.4f)\n", (double)winds[w],
+                              q ? "low" : "high", alt[v], now / target, before / target, target);
+                double lo = v == 0 ? 0.45 : w == 0 && q == 0 && v == 2 ? 0.7 : 0.75;
+                assert_true(now > lo * target && now < 1.33 * target);
+            }
+    }
+    g_no_detile = 0;
 }
 
 /* One view of test_quality_match: low and high quality at gles2-min, every 8 rows' mean
@@ -1658,6 +1748,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_teardown(test_defined_pixels, reset_fixture),
         cmocka_unit_test_teardown(test_quality_match, reset_fixture),
+        cmocka_unit_test_teardown(test_foam_amount, reset_fixture),
         cmocka_unit_test_teardown(test_foam_lod_paths, reset_fixture),
         cmocka_unit_test_teardown(test_glitter_width, reset_fixture),
         cmocka_unit_test_teardown(test_refused_fallback, reset_fixture),
