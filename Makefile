@@ -254,7 +254,8 @@ test-frame: $(FRAME_BIN) $(SWELL)
 
 # The shaders through the real GPUs' compilers: Mesa's lima, vc4, v3d, panfrost, freedreno and
 # etnaviv with their noop drm-shims, built once from Debian's mesa source (tools/mesa-shim.sh;
-# cached outside the clone), then every GPU model, tier and quality (tools/devices.py):
+# cached outside the clone), then every GPU model, tier and quality, with and without the demo
+# boat's objects (reflections, wakes, shadows, refractions: issue 18; tools/devices.py):
 # build/devices/results.json and docs/devices.md. Fails while any program is refused, spills or
 # passes 90 % of a hard limit (issue 15). Not in `make test`: it builds Mesa first (about 26
 # CPU-minutes, once per machine), and today's shaders fail it. With

@@ -156,7 +156,8 @@ typedef struct swell_ocean_desc {
     int linear_output;          /* 1: write linear radiance times the exposure (no display
                                  * transform; a float or sRGB target and your own tone map);
                                  * default 0: display-ready colour (Reinhard on the largest
-                                 * channel, then gamma 2) */
+                                 * channel, then gamma 2). Compiled into the ocean's shaders, so
+                                 * fixed per ocean: for both, two oceans on the same sea */
     int texture_unit_first;     /* the first texture unit swell binds; default 0 (units below
                                  * are the application's, never touched) */
     int texture_unit_count;     /* how many from there swell may bind, at least 3; default 0 =

@@ -6,7 +6,10 @@ drm-shims (tools/mesa-shim.sh builds them), on every tier swell picks there and 
 gles2-min, in both qualities. swell's start-up probe (src/render/renderer.c probe_programs) draws every
 ocean variant and the sky once, each between two labelled lines on stderr
 (SWELL_SHADER_LABELS=1), so the statistics each driver prints while compiling it (MESA_DEBUG=
-context and the driver's shaderdb switch) are told apart by program.
+context and the driver's shaderdb switch) are told apart by program. Each is run again with the
+demo boat (--boat: an ocean with reflections, wakes, shadows and refractions), whose ocean
+programs (named with " objects") are recorded too; the frame-rate estimates are the sea's
+alone.
 
 Writes build/devices/results.json (one record per GPU model, tier, quality, program and stage)
 and docs/devices.md, and exits 1 when a program does not compile or run, spills, or exceeds 90 %
@@ -135,13 +138,18 @@ def program_name(vs, defines):
     renderer_program_name), 'sky', 'sky sun'."""
     d = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in defines.split())
     if vs.startswith("ocean"):
-        return "ocean k=%s kw=%s %s%s%s" % (
+        objects = any(k in d for k in ("SWELL_REFLECT", "SWELL_WAKE", "SWELL_SHADOW",
+                                       "SWELL_REFRACT"))
+        return "ocean k=%s kw=%s %s%s%s%s" % (
             d.get("FS_PATTERNS", "?"), d.get("FS_WHITECAPS", "?"),
             "high" if "QUALITY_HIGH" in d else "low",
             " cpu-vertex" if "CPU_VERTEX_TERMS" in d else "",
-            " no-detile" if "SWELL_NO_DETILE" in d else "")
+            " no-detile" if "SWELL_NO_DETILE" in d else "",
+            " objects" if objects else "")
     if vs.startswith("upscale"):
         return "upscale"
+    if vs.startswith("boat"):
+        return "boat"
     return "sky sun" if "SUN_DISC" in d else "sky"
 
 
@@ -372,8 +380,8 @@ def run(args):
     for model in MODELS:
         if only and model["name"] not in only:
             continue
-        for tier in ("auto", "gles2-min"):
-            for quality in ("high", "low"):
+        for tier, quality, boat in ((t, q, b) for b in (False, True)
+                                    for t in ("auto", "gles2-min") for q in ("high", "low")):
                 env = dict(os.environ)
                 env.update(model["env"])
                 env.update({"LD_LIBRARY_PATH": lib, "LIBGL_DRIVERS_PATH": os.path.join(lib, "dri"),
@@ -387,16 +395,21 @@ def run(args):
                        "--out", os.path.join(out_dir, "frame.png"), "--scale", str(SCALES[-1])]
                 if tier != "auto":
                     cmd += ["--tier", tier]
+                if boat:   # 4 m/s on course 30 deg: a wake, its reflection, shadow, refraction
+                    cmd += ["--boat", "4,30"]
                 try:
                     p = subprocess.run(cmd, env=env, cwd=root, stdout=subprocess.PIPE,
                                        stderr=subprocess.STDOUT, text=True, timeout=120)
                     text, rc = p.stdout, p.returncode
                 except subprocess.TimeoutExpired as e:
                     text, rc = (e.stdout or b"").decode(errors="replace"), "timeout"
-                tag = "%s_%s_%s" % (model["name"].replace(" ", "-"), tier, quality)
+                tag = "%s_%s_%s%s" % (model["name"].replace(" ", "-"), tier, quality,
+                                      "_boat" if boat else "")
                 with open(os.path.join(out_dir, tag + ".log"), "w") as f:
                     f.write(text)
                 gpu, picked, recs = parse_log(text, model)
+                if boat:   # the sky, upscale and sea without objects are the run's before
+                    recs = [r for r in recs if r["program"].endswith(" objects")]
                 for r in recs:
                     r["quality_asked"] = quality
                     r["tier_asked"] = tier
@@ -418,18 +431,21 @@ def run(args):
                 use = [u[1] for u in USE.findall(text) if u[0] == tags]
                 use = dict(kv.split("->") for kv in use[-1].split()) if use else {}
                 runs.append(dict(model=model["name"], gpu=gpu, tier_asked=tier, tier=picked,
-                                 quality=quality, drew=drew, exit=rc, use=use,
+                                 quality=quality, boat=boat, drew=drew, exit=rc, use=use,
                                  detile="no-detile" not in tags, tags=tags,
                                  programs=len({r["program"] for r in recs})))
                 if rc != 0:
-                    failures.append(("%s %s %s: swell exited %s (log %s.log)" %
-                                     (model["name"], tier, quality, rc, tag), None))
-                print("devices: %-12s %-9s %-4s exit %s, %d records" %
-                      (model["name"], tier, quality, rc, len(recs)), file=sys.stderr)
+                    failures.append(("%s %s %s%s: swell exited %s (log %s.log)" %
+                                     (model["name"], tier, quality, " boat" if boat else "", rc,
+                                      tag), None))
+                print("devices: %-12s %-9s %-4s%s exit %s, %d records" %
+                      (model["name"], tier, quality, " boat" if boat else "", rc, len(recs)),
+                      file=sys.stderr)
     estimates, cache = [], {}
     for board in BOARDS:
         for rn in runs:
-            if rn["model"] != board["model"] or rn["exit"] != 0 or rn["drew"] != rn["quality"]:
+            if rn["model"] != board["model"] or rn["exit"] != 0 or \
+                    rn["drew"] != rn["quality"] or rn["boat"]:
                 continue
             for size, scale in ((z, c) for z in SIZES for c in SCALES):
                 w, h = (int(x) for x in size.split("x"))
@@ -501,12 +517,14 @@ def write_doc(path, runs, records, estimates):
               "renderer_create: as first built, else built again with the terms of each vertex "
               "on the CPU, 'cpu-vertex', and/or without the lattice of random offsets, "
               "'no-detile', as low quality always is); programs: every one built on the way.",
-              "", "| GPU | tier asked | tier | quality asked | drawn in | build | exit | programs |",
-              "|---|---|---|---|---|---|---|---|"]
+              "With the boat: `swell --boat 4,30`, an ocean with reflections, wakes, shadows and "
+              "refractions (its ocean programs are named with 'objects').",
+              "", "| GPU | tier asked | tier | quality asked | boat | drawn in | build | exit | "
+              "programs |", "|---|---|---|---|---|---|---|---|---|"]
     for r in runs:
-        lines.append("| %s | %s | %s | %s | %s | %s | %s | %d |" % (
-            r["model"], r["tier_asked"], r["tier"], r["quality"], r["drew"],
-            r.get("tags") or "as first built", r["exit"], r["programs"]))
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %d |" % (
+            r["model"], r["tier_asked"], r["tier"], r["quality"], "yes" if r["boat"] else "-",
+            r["drew"], r.get("tags") or "as first built", r["exit"], r["programs"]))
     lines += ["", "## Ocean programs per GPU, tier and quality", "",
               "Over the variants (each fetching 0-4 patterns and 0-4 whitecap tables): how many "
               "the driver runs, the largest vertex and fragment shader (instructions as its "

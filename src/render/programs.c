@@ -67,12 +67,19 @@ int renderer_pixel_variant(const uint8_t rgba[4])
     return rgba[0] / 10 - 1;
 }
 
-/* How the programs were built where renderer_create built them again: "", " cpu-vertex"
- * (the terms of the vertex on the CPU), " no-detile" (no lattice), or both. */
+/* How the programs were built where renderer_create built them again: " cpu-vertex" (the
+ * terms of the vertex on the CPU), " no-detile" (no lattice), then " objects" for an ocean
+ * that takes the application's objects (reflections, wakes, shadows or refractions: more
+ * uniforms, units and work; tools/devices.py tells their programs apart by it). */
 const char *program_tags(const struct renderer *r)
 {
+    static const char *const tags[8] = {
+        "", " cpu-vertex", " no-detile", " cpu-vertex no-detile", " objects",
+        " cpu-vertex objects", " no-detile objects", " cpu-vertex no-detile objects"
+    };
     int cpu = r->cpu_vterms && !r->vtf, off = !renderer_detile(r);
-    return cpu && off ? " cpu-vertex no-detile" : cpu ? " cpu-vertex" : off ? " no-detile" : "";
+    int obj = r->d.reflections || r->d.wakes || r->d.shadows || r->d.refractions;
+    return tags[cpu | off << 1 | obj << 2];
 }
 
 void renderer_program_name(const struct renderer *r, int v, char *buf, size_t size)
