@@ -2,6 +2,7 @@
  * drawn with the application's camera matrices into its framebuffer, the GL state it changes
  * restored (gl/glstate.h). */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include "api/api.h"
 #include "gl/glstate.h"
