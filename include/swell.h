@@ -167,7 +167,7 @@ typedef struct swell_ocean_desc {
                                  * (swell_ocean_begin_reflection): one more texture unit and
                                  * a target of half the viewport's size as a power of two,
                                  * at most 512 x 512, RGBA8 with mipmaps and 16-bit depth, and
-                                 * an atlas of its levels (1.9 MiB at 1280 x 720, 3.8 MiB at
+                                 * an atlas of its levels (2.4 MiB at 1280 x 720, 4.8 MiB at
                                  * most); default 0: the sea reflects the sky alone */
     int wakes;                  /* 1: a moving hull leaves a Kelvin wake (swell_ocean_set_wake):
                                  * one more texture unit and a 512 x 256 RGBA8 map with mipmaps

@@ -1,10 +1,10 @@
 // ocean.frag - sea shading (Bruneton 2010 §4-5, Hu 2006 §5, Dupuy 2012 eq. 6-8).
 // validate: FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=2 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=4 | FS_PATTERNS=3 FS_WHITECAPS=0 | FS_PATTERNS=2 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 |
 // validate: FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_RUN_LOD | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_RUN_LOD | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_NO_DETILE | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_NO_DETILE | FS_PATTERNS=4 FS_WHITECAPS=2 SWELL_LINEAR_OUT |
-// validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT SWELL_LINEAR_OUT |
-// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_WAKE | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_WAKE SWELL_REFLECT | FS_PATTERNS=0 FS_WHITECAPS=0 SWELL_WAKE SWELL_RUN_LOD |
-// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_SHADOW | FS_PATTERNS=1 FS_WHITECAPS=1 SWELL_SHADOW SWELL_WAKE SWELL_REFLECT |
-// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_REFRACT | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_REFRACT SWELL_SHADOW SWELL_WAKE SWELL_REFLECT SWELL_LINEAR_OUT
+// validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT REFL_RIP_M=4 | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT REFL_RIP_M=4 | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT REFL_RIP_M=4 SWELL_LINEAR_OUT |
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_WAKE | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_WAKE SWELL_REFLECT REFL_RIP_M=4 | FS_PATTERNS=0 FS_WHITECAPS=0 SWELL_WAKE SWELL_RUN_LOD |
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_SHADOW | FS_PATTERNS=1 FS_WHITECAPS=1 SWELL_SHADOW SWELL_WAKE SWELL_REFLECT REFL_RIP_M=4 |
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_REFRACT | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_REFRACT SWELL_SHADOW SWELL_WAKE SWELL_REFLECT REFL_RIP_M=4 SWELL_LINEAR_OUT
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
@@ -59,11 +59,11 @@ uniform mat3 refl_mat;              // a reflected ray (any length) -> the map's
 uniform vec4 refl_screen;           // gl_FragCoord -> the flat sea's map uv: scale xy, offset zw
 uniform vec4 refl_ray;              // gl_FragCoord -> the view ray in the eye frame, (x, y, -1)
 uniform vec4 refl_down;             // the eye frame's components of world -z; c / D_o
-uniform float refl_blur;            // log2 of eq. 27's footprint per unit sigma, in the map's
-                                    // texels (reflect.c)
-uniform vec3 refl_levels;           // the map's last level; 1 / its width, height
-uniform vec2 refl_up;               // the map's vertical (world z's image at its centre), a
-                                    // texel long, in uv
+uniform vec2 refl_blur;             // log2 of the map's level-0 texels per 2 rad, across (x)
+                                    // and along (y) (reflect.c)
+uniform vec4 refl_levels;           // the map's last level across; 1 / its width, height;
+                                    // log2 of its height (the atlas's last version)
+uniform vec2 refl_axes;             // squares of the world vertical's direction on the map
 #endif
 #ifdef SWELL_WAKE
 uniform sampler2D wake_tex;         // the hull's Kelvin wake (geometry/kelvin.h): mean slope,
@@ -384,19 +384,22 @@ vec3 display_to_radiance(vec3 c)
 // d = 2 uv - 1, r ~ (2 d, 1 - d.d)), which already carries the pixel's slope. The map holds
 // display colours (the application's), premultiplied: they are taken back to radiance by
 // inverting tone_map, so a mirror (F = 1) would show an object as the application drew it.
-// Level l (a whole number) of the reflection map at uv: in the atlas (reflect.c), level 0 fills
-// the lower half, level l >= 1 is at x from 1 - 2^(1 - l) in the upper; uv kept half a texel
-// inside the level, so no level's filter reads its neighbour's.
-vec4 refl_level(vec2 uv, float l)
+// Version (l, m) of the reflection map at uv (whole numbers): level l halved m more times along
+// the map's vertical, in the atlas (reflect.c's layout: level l's column at x 0 or 1 - 2^(1 - l),
+// y 0 or 2/3, version m 2/3 2^-l (1 - 2^-m) above it; the atlas is three heights tall); uv kept
+// half a texel inside the version, so no filter reads its neighbour's.
+vec4 refl_level(vec2 uv, float l, float m)
 {
-    float s = exp2(-l);
-    vec2 h = 0.5 * refl_levels.yz / s;
+    m = clamp(m, 0.0, min(float(REFL_RIP_M), refl_levels.w - l));
+    float s = exp2(-l), t = exp2(-m);
+    vec2 h = 0.5 * refl_levels.yz / vec2(s, s * t);
     uv = clamp(uv, h, vec2(1.0) - h);
-    vec2 o = step(0.5, l) * vec2(1.0 - 2.0 * s, 0.5);
-    return texture2D(refl_tex, uv * vec2(s, 0.5 * s) + o);
+    float up = step(0.5, l);
+    return texture2D(refl_tex, uv * vec2(s, s * t * (1.0 / 3.0)) +
+                               vec2(up * (1.0 - 2.0 * s), (2.0 / 3.0) * (up + s * (1.0 - t))));
 }
 
-vec4 reflect_local(vec2 sky_uv, float sigma)
+vec4 reflect_local(vec2 sky_uv, vec2 sig)
 {
     vec2 d = 2.0 * sky_uv - vec2(1.0);
     vec3 q = refl_mat * vec3(2.0 * d, 1.0 - dot(d, d));
@@ -410,19 +413,24 @@ vec4 reflect_local(vec2 sky_uv, float sigma)
     float k = clamp(1.0 - refl_down.w / max(sin_dep, 1e-4), 0.0, 1.0);
     vec2 flat_uv = gl_FragCoord.xy * refl_screen.xy + refl_screen.zw;
     vec2 uv = flat_uv + k * (q.xy / max(q.z, 1e-3) - flat_uv);
-    // Eq. 27's ellipse: a slope turns the reflected ray in the plane of incidence by twice its
-    // angle, across it by sin(depression) times that; the footprint f_v (log2 of the map's
-    // texels) along the map's vertical (refl_up), sin(depression) of it across. Two taps at
-    // +-1/4 of it along the vertical, each a box half as tall, at the level of the wider of
-    // half the height and the width (so at most 2:1 of the ellipse's anisotropy is kept;
-    // a single isotropic fetch drew an object's reflection as a round blob on a calm sea),
-    // each between two whole levels of the atlas.
-    float fv = log2(max(sigma * k, 1e-4)) + refl_blur;
-    float f = clamp(max(fv - 1.0, fv + log2(max(sin_dep, 0.0625))), 0.0, refl_levels.x);
-    float l0 = floor(f), l1 = min(l0 + 1.0, refl_levels.x);
-    vec2 du = refl_up * (0.25 * exp2(fv));
-    vec4 c = mix(refl_level(uv + du, l0) + refl_level(uv - du, l0),
-                 refl_level(uv + du, l1) + refl_level(uv - du, l1), f - l0) * 0.5;
+    // Eq. 27's ellipse, k times: a slope deviation along the view (sig.x) turns the reflected
+    // ray in the plane of incidence by twice its angle, one across it (sig.y) turns it across
+    // by 2 sin(depression) times it. Their standard deviations on the map in level-0 texels,
+    // t = sigma k 2^refl_blur per axis, with the world vertical's direction c on the map
+    // (rolled views: the ellipse's extent along the map's axes). A version of the atlas
+    // (reflect.c) is a box of 2^l texels across and 2^(l + m) along, read bilinearly: a kernel
+    // of standard deviation 2^l / 2 (box and tent) - so the level across is log2(2 t.x) and
+    // along log2(2 t.y), each between whole versions (four fetches). Until this build two taps
+    // of one isotropic level kept at most 2:1 of the ellipse: an object's reflection was 5-6x
+    // too wide across the view (test_reflect test_blur_width).
+    vec2 s2 = sig * sig * vec2(1.0, sin_dep * sin_dep);
+    vec2 t = k * exp2(refl_blur) * sqrt(s2.x * refl_axes + s2.y * refl_axes.yx);
+    vec2 lv = log2(max(2.0 * t, vec2(1e-3)));
+    float lx = clamp(lv.x, 0.0, refl_levels.x);
+    float l0 = floor(lx), l1 = min(l0 + 1.0, refl_levels.x);
+    float m = max(lv.y - l0, 0.0), m0 = floor(m);
+    vec4 c = mix(mix(refl_level(uv, l0, m0), refl_level(uv, l0, m0 + 1.0), m - m0),
+                 mix(refl_level(uv, l1, m0 - 1.0), refl_level(uv, l1, m0), m - m0), lx - l0);
     // nothing where the ray leaves the map (behind the camera or past its margin)
     vec2 in_uv = step(vec2(0.0), uv) * step(uv, vec2(1.0));
     c *= step(0.0, q.z) * in_uv.x * in_uv.y;
@@ -568,8 +576,14 @@ void main()
 #endif
     vec3 sky = sky_eq27(uv.zw, sigma) * sky_map_scale;
 #ifdef SWELL_REFLECT
-    // an object's reflection covers the sky's, and the sun's where it stands in front of it
-    vec4 obj = reflect_local(uv.zw, sigma);
+    // an object's reflection covers the sky's, and the sun's where it stands in front of it;
+    // eq. 27's slope deviations along the view (eq. 25's) and across it (low quality: the
+    // larger, per vertex)
+#ifdef QUALITY_HIGH
+    vec4 obj = reflect_local(uv.zw, vec2(sig_v, sqrt(mix(var.x, var.y, v_sun.w))));
+#else
+    vec4 obj = reflect_local(uv.zw, vec2(sigma));
+#endif
     sky = sky * (1.0 - obj.a) + obj.rgb;
     sun *= 1.0 - obj.a;
 #endif

@@ -35,7 +35,7 @@ enum ocean_uniform {
     OU_SLOT_LOD, OU_WC_LOD, OU_LOD_FRAME, OU_SLOPE_VAR, OU_LOD_CMAX, OU_VAR_KNOT_V,
     OU_VAR_KNOT_FRAME_V, OU_SKY_RUN_LOD, OU_SKY_RUN_BLK, OU_WC_TRUST, OU_FOAM_DETAIL, OU_REFL_TEX, OU_REFL_MAT,
     OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
-    OU_REFL_LEVELS, OU_REFL_UP, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM, OU_FOAM_GAIN, OU_FOAM_GAIN_V,
+    OU_REFL_LEVELS, OU_REFL_AXES, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM, OU_FOAM_GAIN, OU_FOAM_GAIN_V,
     OU_WAKE_WARP, OU_SHADOW_TEX, OU_SHADOW_MAT, OU_SHADOW_SEA, OU_SHADOW_FOAM,
     OU_REFR_TEX, OU_REFR_SCREEN, OU_REFR_SHIFT, OU_REFR_TAU,
     OU_COUNT
@@ -243,15 +243,17 @@ struct renderer {
     GLuint refl_none;                 /* 1x1 transparent: a draw with no pass before it */
     GLuint refl_atlas, refl_atlas_fbo;  /* the map's levels side by side, no mips (w x 2h) */
     struct shader_program refl_copy;  /* upscale.vert/.frag: the atlas's copy */
-    GLint refl_copy_tex;
+    GLint refl_copy_u[3];             /* the atlas copy's frame_tex, copy_step, copy_bias */
     int refl_active;                  /* between renderer_reflection_begin and _end */
     int refl_ready;                   /* a pass ended since the last draw */
     float refl_mat[9];                /* reflected ray -> map uv times w (ocean.frag) */
     float refl_screen[4];             /* gl_FragCoord -> the flat sea's map uv */
     float refl_ray[4];                /* gl_FragCoord -> the eye-frame view ray */
     float refl_down[4];               /* world -z in the eye frame; camera height / distance */
-    float refl_blur;                  /* eq. 27's footprint per unit sigma, log2 texels */
-    float refl_up[2];                 /* the map's vertical, a texel long in uv */
+    float refl_blur[2];               /* the map's level-0 texels per 2 rad across (P00 w of
+                                       * the pass) and along (P11 h), log2 (ocean.frag) */
+    float refl_axes[2];               /* (c_x^2, c_y^2): c the world vertical's unit direction
+                                       * on the map at its centre (0, 1 without roll) */
     struct pass_saved refl_saved;     /* the application's state at begin */
     /* The Kelvin wake (wake.c, renderer_desc wakes) */
     GLuint wake_tex;                  /* kelvin.h's map, mipmapped, clamped */
@@ -364,6 +366,11 @@ void pass_target_size(int vw, int vh, int *w, int *h);
 void pass_oblique_near(float p[16], const double c[4]);
 /* gl_FragCoord to a view pass's map uv: scale xy, offset zw (ocean.frag refl_/refr_screen). */
 void pass_screen_uv(const struct renderer_view *v, float out[4]);
+/* The reflection atlas (reflect.c): each level of the map's mip chain, and below it up to
+ * REFL_RIP_M versions halved again and again along the map's vertical only (a ripmap's
+ * column): eq. 27's ellipse is up to 2^REFL_RIP_M times longer along the view than across. */
+#define REFL_RIP_M 4
+#define REFL_RIP_M_STR "4"   /* the same for ocean.frag's defines (programs.c) */
 /* A view pass's field of view is the view's widened by this factor (tan of the half angles),
  * so a ray the waves tilt past the screen's edge still finds its object. */
 #define PASS_MARGIN 1.25f

@@ -22,7 +22,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "slope_mean", "slot_lod", "wc_lod", "lod_frame", "slope_var", "lod_cmax", "var_knot_v",
     "var_knot_frame_v", "sky_run_lod", "sky_run_blk", "wc_trust", "foam_detail", "refl_tex", "refl_mat",
     "refl_screen", "refl_ray", "refl_down", "refl_blur", "refl_levels",
-    "refl_up", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam", "foam_gain", "foam_gain_v",
+    "refl_axes", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam", "foam_gain", "foam_gain_v",
     "wake_warp", "shadow_tex", "shadow_mat", "shadow_sea", "shadow_foam",
     "refr_tex", "refr_screen", "refr_shift", "refr_tau"
 };
@@ -109,7 +109,7 @@ int build_programs(struct renderer *r, struct swell_err *err)
                              r->run_lod ? " SWELL_RUN_LOD" : "",
                              renderer_detile(r) ? "" : " SWELL_NO_DETILE",
                              r->d.linear_output ? " SWELL_LINEAR_OUT" : "",
-                             r->d.reflections ? " SWELL_REFLECT" : "",
+                             r->d.reflections ? " SWELL_REFLECT REFL_RIP_M=" REFL_RIP_M_STR : "",
                              r->d.wakes ? " SWELL_WAKE" : "",
                              r->d.shadows ? " SWELL_SHADOW" : "",
                              r->d.refractions ? " SWELL_REFRACT" : "");

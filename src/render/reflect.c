@@ -16,17 +16,37 @@
  * position jumps with the slope): read by it, the map's coarse levels smeared an object's
  * colour over the whole sea. So the map's levels are copied into an atlas without mips
  * (reflect_atlas, as sky_run reads the sky on software rasterisers), and ocean.frag blends the
- * two levels around the footprint there, each fetched bilinearly at its own level.
+ * levels around the footprint there, each fetched bilinearly at its own level.
+ *
+ * Eq. 27's footprint is an ellipse: a slope turns the reflected ray by twice its angle in the
+ * plane of incidence, across it by sin(depression) times that, so a reflection is a streak
+ * along the view, the longer the lower the view (6:1 at 10 degrees). GLES 2 has no
+ * anisotropic fetch; a mip level wide enough for the long axis blurred an object's reflection
+ * across the view 5-6x wider than eq. 27 says (test_reflect test_blur_width). So the atlas
+ * holds a ripmap's column for each level l of the chain: versions halved along the map's
+ * vertical only, m = 0..REFL_RIP_M times (each a box of 2^m rows of level l), and ocean.frag
+ * takes the level across from the ellipse's width and m from its length: four fetches.
+ * Layout (w x 3h): level l's column at x = 0 for l = 0, w (1 - 2^(1 - l)) for l >= 1; at y = 0
+ * for l = 0, 2h for l >= 1, plus 2 (h >> l) (1 - 2^-m) for version m.
  */
 #include <math.h>
 #include <string.h>
 #include "render/internal.h"
 
 
-/* The atlas of the map's levels (w x 2h RGBA8), the renderer's share. */
+/* The atlas of the map's levels (w x 3h RGBA8), the renderer's share. */
 static uint64_t atlas_bytes(int w, int h)
 {
-    return (uint64_t)w * (uint64_t)h * 8u;
+    return (uint64_t)w * (uint64_t)h * 12u;
+}
+
+/* log2 of a power of two */
+static int log2i(int n)
+{
+    int l = 0;
+    while ((1 << (l + 1)) <= n)
+        l++;
+    return l;
 }
 
 static void release_target(struct renderer *r)
@@ -50,15 +70,15 @@ void reflect_destroy(struct renderer *r)
 /* The 1x1 transparent map a draw reads when no pass was drawn for it. */
 int reflect_create(struct renderer *r, struct swell_err *err)
 {
-    static const char *const names[1] = { "frame_tex" };
+    static const char *const names[3] = { "frame_tex", "copy_step", "copy_bias" };
     static const struct shader_attrib attribs[1] = { { "a_ndc", 0 } };
     if (!r->d.reflections)
         return 0;
-    /* the atlas's copy: upscale.vert/.frag, a bilinear fetch over the viewport */
+    /* the atlas's copy: upscale.vert, refl_copy.frag (a box of rows of one level) */
     struct shader_desc sd = {
-        .dir = r->d.shader_dir, .vs_file = "upscale.vert", .fs_file = "upscale.frag",
-        .caps = &r->gpu->caps, .uniform_names = names, .uniform_count = 1,
-        .uniform_locations = &r->refl_copy_tex, .attribs = attribs, .attrib_count = 1,
+        .dir = r->d.shader_dir, .vs_file = "upscale.vert", .fs_file = "refl_copy.frag",
+        .caps = &r->gpu->caps, .uniform_names = names, .uniform_count = 3,
+        .uniform_locations = r->refl_copy_u, .attribs = attribs, .attrib_count = 1,
     };
     int rc = shader_program_build(&sd, &r->refl_copy, err);
     if (rc)
@@ -76,7 +96,7 @@ static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *e
     int rc = pass_target_create(r, &r->refl, w, h, 1, UNIT_REFLECT, "reflection map", err);
     if (rc)
         return rc;
-    rc = gpu_texture_create(r->gpu, w, 2 * h, 1, FORMAT_RGBA8, 0, "reflection atlas",
+    rc = gpu_texture_create(r->gpu, w, 3 * h, 1, FORMAT_RGBA8, 0, "reflection atlas",
                             &r->refl_atlas, err);
     if (rc) {
         pass_target_destroy(r, &r->refl);
@@ -91,7 +111,7 @@ static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *e
     if (st != GL_FRAMEBUFFER_COMPLETE) {
         release_target(r);
         return swell_fail(err, SWELL_E_GL, "renderer: the reflection atlas %dx%d (RGBA8) is not "
-                          "complete on this device (status 0x%x)", w, 2 * h, st);
+                          "complete on this device (status 0x%x)", w, 3 * h, st);
     }
     return gpu_check("renderer: reflection target", err);
 }
@@ -148,11 +168,11 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
         r->refl_mat[3 * k + 1] = 0.5f * (out->proj[5] * ey + out->proj[9] * ez - ez);
         r->refl_mat[3 * k + 2] = -ez;
     }
-    /* eq. 27's footprint 2 sigma du/dzeta: a slope deviation sigma turns the reflected ray by
-     * 2 sigma, and the footprint spans twice that, 4 sigma rad; a radian is P11 h / 2 of the
-     * map's texels at its centre (P11 the pass's, h the map's): the level is log2(2 P11 h) +
-     * log2(sigma) */
-    float blur = log2f(2.0f * out->proj[5] * (float)r->refl.h);
+    /* eq. 27's footprint: a slope deviation sigma turns the reflected ray by 2 sigma, an
+     * angle the map sees as 2 sigma P h / 2 = sigma P h texels at its centre (P00 w across,
+     * P11 h along: the pass's projection, the map's size) */
+    r->refl_blur[0] = log2f(out->proj[0] * (float)r->refl.w);
+    r->refl_blur[1] = log2f(out->proj[5] * (float)r->refl.h);
     /* gl_FragCoord to the flat sea's map uv, 0.5 + ndc / (2 m) */
     pass_screen_uv(v, r->refl_screen);
     /* gl_FragCoord to the eye-frame view ray ((ndc_x + P20) / P00, (ndc_y + P21) / P11, -1),
@@ -167,17 +187,15 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
         r->refl_down[i] = -vr[8 + i];   /* -V (0, 0, 1)^T's row: world z of an eye vector */
     /* c / D_o, 0 for objects at infinity (ocean.frag's parallax factor) */
     r->refl_down[3] = d && d->distance_m > 0.0f ? (float)(cz / d->distance_m) : 0.0f;
-    r->refl_blur = blur;
-    /* the map's vertical: world z in the eye frame, projected at the map's centre, one texel
-     * long in uv (rolled views turn it) */
-    float tx = vr[8] * out->proj[0] * (float)r->refl.w, ty = vr[9] * out->proj[5] * (float)r->refl.h;
-    float tl = sqrtf(tx * tx + ty * ty);
+    /* the map's vertical: world z in the eye frame, its direction on the screen at the
+     * centre (rolled views turn it); ocean.frag takes its components' squares */
+    float tx = vr[8], ty = vr[9], tl = tx * tx + ty * ty;
     if (!(tl > 0.0f)) {
         tx = 0.0f;
         ty = tl = 1.0f;
     }
-    r->refl_up[0] = tx / tl / (float)r->refl.w;
-    r->refl_up[1] = ty / tl / (float)r->refl.h;
+    r->refl_axes[0] = tx * tx / tl;
+    r->refl_axes[1] = ty * ty / tl;
 
     pass_target_bind(&r->refl);
     glFrontFace(GL_CW);   /* the mirror turns every triangle's winding */
@@ -192,9 +210,10 @@ int renderer_reflection_end(struct renderer *r, struct swell_err *err)
         return swell_fail(err, SWELL_E_ARG, "renderer: no reflection pass is open: begin one "
                           "first");
     r->refl_active = 0;
-    /* the mip chain, then its levels into the atlas: level 0 in the lower half, level l >= 1
-     * at x = w (1 - 2^(1 - l)) in the upper. Each is drawn at its own size over a fetch of
-     * the chain, whose implicit LOD is then exactly l. State the copy changes and the
+    /* the mip chain, then its levels into the atlas (the layout above). Each version (l, m) is
+     * drawn at its own size, w >> l by h >> (l + m), over fetches of the chain whose implicit
+     * LOD is then l + m, biased by -m to l, each the mean of two of its rows (at their
+     * boundary), 2^(m - 1) of them (one at m = 0: the row itself). State the copy changes and the
      * application's may hold (program, buffer, attribute 0, blend, depth, cull, the unit's
      * binding) is the caller's to restore (api_ocean.c). */
     glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
@@ -206,17 +225,24 @@ int renderer_reflection_end(struct renderer *r, struct swell_err *err)
     glDisable(GL_CULL_FACE);
     glDisable(GL_SCISSOR_TEST);
     glUseProgram(r->refl_copy.program);
-    glUniform1i(r->refl_copy_tex, r->d.texture_unit_first + UNIT_REFLECT);
+    glUniform1i(r->refl_copy_u[0], r->d.texture_unit_first + UNIT_REFLECT);
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    for (int l = 0; l < r->refl.levels; l++) {
-        int lw = r->refl.w >> l > 0 ? r->refl.w >> l : 1;
-        int lh = r->refl.h >> l > 0 ? r->refl.h >> l : 1;
-        int x = l == 0 ? 0 : r->refl.w - (r->refl.w >> (l - 1));
-        glViewport(x, l == 0 ? 0 : r->refl.h, lw, lh);
-        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    }
+    int top = log2i(r->refl.h);   /* versions stop where a row is the whole level */
+    for (int l = 0; l < r->refl.levels && l <= top; l++)
+        for (int m = 0; m <= REFL_RIP_M && l + m <= top; m++) {
+            int lw = r->refl.w >> l > 0 ? r->refl.w >> l : 1, lh = r->refl.h >> (l + m);
+            int col = 2 * (r->refl.h >> l);
+            int x = l == 0 ? 0 : r->refl.w - (r->refl.w >> (l - 1));
+            int y = (l == 0 ? 0 : 2 * r->refl.h) + col - (col >> m);
+            int n = m > 0 ? 1 << (m - 1) : 1;
+            /* a row of level l in uv; the taps' count */
+            glUniform2f(r->refl_copy_u[1], (float)(1 << l) / (float)r->refl.h, (float)n);
+            glUniform1f(r->refl_copy_u[2], -(float)m);
+            glViewport(x, y, lw, lh);
+            glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+        }
     glDisableVertexAttribArray(0);
     pass_restore(&r->refl_saved);
     r->refl_ready = 1;
@@ -234,8 +260,9 @@ void reflect_uniforms(const struct renderer *r, const GLint *u)
     glUniform4fv(u[OU_REFL_SCREEN], 1, r->refl_screen);
     glUniform4fv(u[OU_REFL_RAY], 1, r->refl_ray);
     glUniform4fv(u[OU_REFL_DOWN], 1, r->refl_down);
-    glUniform1f(u[OU_REFL_BLUR], r->refl_blur);
-    glUniform2fv(u[OU_REFL_UP], 1, r->refl_up);
-    glUniform3f(u[OU_REFL_LEVELS], (float)(r->refl.levels - 1), 1.0f / (float)r->refl.w,
-                1.0f / (float)r->refl.h);
+    glUniform2fv(u[OU_REFL_BLUR], 1, r->refl_blur);
+    glUniform2fv(u[OU_REFL_AXES], 1, r->refl_axes);
+    int top = log2i(r->refl.h);
+    glUniform4f(u[OU_REFL_LEVELS], (float)(r->refl.levels - 1 < top ? r->refl.levels - 1 : top),
+                1.0f / (float)r->refl.w, 1.0f / (float)r->refl.h, (float)top);
 }
