@@ -160,11 +160,13 @@ static inline void frame_app_view(swell_view *v, const double eye[3], double hea
 }
 
 /* The flat sea's point (z = 0) under pixel (x, y) (GL's rows, from the bottom) of view v, its
- * viewport at the origin: 0 and xy, or -1 above the horizon. */
+ * viewport at the origin, its projection perspective (off-axis too: ndc = P00 e_x / -e_z -
+ * P20, so the eye ray is ((ndc_x + P20) / P00, (ndc_y + P21) / P11, -1)): 0 and xy, or -1
+ * above the horizon. */
 static inline int frame_sea_point(const swell_view *v, double x, double y, double xy[2])
 {
-    double e[3] = { ((2.0 * (x + 0.5) / v->viewport[2]) - 1.0) / v->proj[0],
-                    ((2.0 * (y + 0.5) / v->viewport[3]) - 1.0) / v->proj[5], -1.0 };
+    double e[3] = { ((2.0 * (x + 0.5) / v->viewport[2]) - 1.0 + v->proj[8]) / v->proj[0],
+                    ((2.0 * (y + 0.5) / v->viewport[3]) - 1.0 + v->proj[9]) / v->proj[5], -1.0 };
     double d[3];
     for (int i = 0; i < 3; i++)   /* world = R^T eye: row i of R^T is column i of the view */
         d[i] = v->view[4 * i + 0] * e[0] + v->view[4 * i + 1] * e[1] + v->view[4 * i + 2] * e[2];

@@ -7,7 +7,8 @@
  * - Where: on a calm sea the reflection lies where the mirror geometry puts it: the board's
  *   corners mirrored in the sea plane and projected by the application's camera give a
  *   rectangle; the reflection's centroid is within a few pixels of its centre (columns) and
- *   inside it (rows), and most of the reflection lies inside it; gles2-min and gles3 alike.
+ *   inside it (rows), and most of the reflection lies inside it; gles2-min and gles3 alike,
+ *   and through an off-axis projection.
  * - Blur: the rougher the sea, the wider the reflection's spread beyond the board's own, as
  *   eq. 27's footprint (2 sigma of the slopes, times the parallax factor) widens.
  * - The sea beyond the objects reflects nothing of them (parallax); an ocean made for
@@ -41,11 +42,15 @@
 static struct platform_handle g_ph;
 static GLuint g_fbo, g_prog;
 
-/* The application's camera: EYE_Z m up at the origin, looking along +x, PITCH deg down. */
+/* The application's camera: EYE_Z m up at the origin, looking along +x, PITCH deg down; its
+ * frustum shifted by g_shift (glFrustum's off-axis P20, P21; 0: symmetric). */
+static float g_shift[2];
 static void app_view(swell_view *v)
 {
     static const double eye[3] = { 0.0, 0.0, EYE_Z };
     frame_app_view(v, eye, 0.0, PITCH, W, H);
+    v->proj[8] = g_shift[0];
+    v->proj[9] = g_shift[1];
 }
 
 /* The board, drawn with view and proj relative to eye (double, as an application would). */
@@ -89,11 +94,12 @@ struct refl_stats {
                                   * row's or more (the reflection's edge at the waterline) */
 };
 
-/* The distance to the flat sea along pixel (x, y)'s view ray, m (1e30 above the horizon). */
+/* The distance to the flat sea along pixel (x, y)'s view ray, m (1e30 above the horizon);
+ * off-axis projections too (frame_util.h frame_sea_point). */
 static double flat_distance(const swell_view *v, int x, int y)
 {
-    double e[3] = { ((2.0 * (x + 0.5) / W) - 1.0) / v->proj[0],
-                    ((2.0 * (y + 0.5) / H) - 1.0) / v->proj[5], -1.0 };
+    double e[3] = { ((2.0 * (x + 0.5) / W) - 1.0 + v->proj[8]) / v->proj[0],
+                    ((2.0 * (y + 0.5) / H) - 1.0 + v->proj[9]) / v->proj[5], -1.0 };
     double z = v->view[8] * e[0] + v->view[9] * e[1] + v->view[10] * e[2];
     double len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
     return z < 0.0 ? EYE_Z * len / -z : 1e30;
@@ -233,6 +239,19 @@ static void test_mirror_position_gles3(void **state)
 {
     (void)state;
     mirror_position(SWELL_TIER_GLES3);
+}
+
+/* An off-axis projection (issue 16: a lens-shifted view, a tiled display's or a stereo eye's):
+ * the reflection still lies where the mirror geometry puts it (the pass takes the view's P20
+ * and P21, reflect.c; the prediction projects with them). The frustum shifted a fifth of its
+ * width right and a tenth of its height down (the board moves 48 px left, 14 up). */
+static void test_mirror_position_off_axis(void **state)
+{
+    (void)state;
+    g_shift[0] = 0.2f;
+    g_shift[1] = -0.1f;
+    mirror_position(SWELL_TIER_GLES2_MIN);
+    g_shift[0] = g_shift[1] = 0.0f;
 }
 
 /* The reflection's spread grows with the wind (eq. 27's footprint with the slopes' sigma):
@@ -555,6 +574,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mirror_position_gles2_min),
         cmocka_unit_test(test_mirror_position_gles3),
+        cmocka_unit_test(test_mirror_position_off_axis),
         cmocka_unit_test(test_blur_with_roughness),
         cmocka_unit_test(test_blur_width),
         cmocka_unit_test(test_distance_and_no_pass),

@@ -12,6 +12,7 @@
  * - Where: the changed pixels' centroid lies at the board's apparent place (its depth divided
  *   by n, Hu's scaling, seen by the camera), within 4 px; nothing changes above the horizon.
  * - Tiers: gles3 gives the same changes within 5 %.
+ * - Off-axis projections: the same where and eq. 4.
  * Exit 77 (skip) only without an EGL device and CI unset (frame_util.h).
  */
 #include <math.h>
@@ -55,10 +56,14 @@ static GLuint board_program(void)
         "void main() { gl_FragColor = vec4(vec3(v_t), v_t); }\n");
 }
 
+/* the frustum shifted by g_shift (off-axis P20, P21; 0: symmetric) */
+static float g_shift[2];
 static void view_of(swell_view *v)
 {
     static const double eye[3] = { 0.0, 0.0, EYE_Z };
     frame_app_view(v, eye, 0.0, PITCH, W, H);
+    v->proj[8] = g_shift[0];
+    v->proj[9] = g_shift[1];
 }
 
 /* The pixel (GL rows) where view v sees the world point p. */
@@ -180,6 +185,20 @@ static void test_eq4_gles2_min(void **state)
     eq4(SWELL_TIER_GLES2_MIN, c);
 }
 
+/* An off-axis projection (issue 16): the board still shows at its apparent place within 4 px
+ * and nothing changes above the horizon (refract_frames' assertions), the frustum shifted a
+ * quarter of its width left and a tenth of its height up; eq. 4's darkening with depth as on
+ * axis (eq4's). */
+static void test_off_axis(void **state)
+{
+    (void)state;
+    double c[3][3];
+    g_shift[0] = -0.25f;
+    g_shift[1] = 0.1f;
+    eq4(SWELL_TIER_GLES2_MIN, c);
+    g_shift[0] = g_shift[1] = 0.0f;
+}
+
 static void test_tiers(void **state)
 {
     (void)state;
@@ -206,6 +225,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_eq4_gles2_min),
         cmocka_unit_test(test_tiers),
+        cmocka_unit_test(test_off_axis),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
