@@ -530,8 +530,8 @@ void main()
 #endif
 #ifdef SWELL_WAKE
     // Local waves (Bruneton §6): the wake's slope joins the pixel's, the variance its fetch
-    // averaged joins the unresolved (evenly per axis: the map keeps |s|^2, not each axis's);
-    // low quality takes the variance per vertex and so misses the wake's
+    // averaged joins the unresolved (evenly per axis: the map keeps |s|^2, not each axis's;
+    // low quality: below, into the vertex's)
     vec4 wake = wake_sample();
     g_ds += wake.xy;
     g_var += vec2(0.5 * wake.z);
@@ -558,8 +558,21 @@ void main()
 #else
     // The same with the variance per vertex (ocean.vert): eq. 26 of the vertex's sigma and
     // the Gaussian of eq. 15 with its inverse variances and normalisation.
+    vec2 ib = v_base.xy;    // 0.5 / the slope variance
+#ifdef SWELL_WAKE
+    // The wake's variance within the fetch joins the vertex's, as high quality's g_var: w =
+    // wake.z / 2 per axis, 0.5 / (var + w) = ib g with g = 1 / (1 + 2 w ib); eq. 15's
+    // normalisation 1 / (sigma_x sigma_y) times sqrt(g_x g_y). Eq. 26's terms stay the
+    // vertex's. Before, the distant wake's waves averaged out of the slopes were lost: its
+    // glitter's widening there (test_wake test_low_quality).
+    vec2 g = 1.0 / (1.0 + wake.z * ib);
+    ib *= g;
+#endif
     float f_eff = fresnel_eff_terms(ftex.a, v_sun.w, v_base.z);
-    float p = exp(-(d.x * d.x * v_base.x + d.y * d.y * v_base.y)) * v_sun.z;
+    float p = exp(-(d.x * d.x * ib.x + d.y * d.y * ib.y)) * v_sun.z;
+#ifdef SWELL_WAKE
+    p *= sqrt(g.x * g.y);
+#endif
 #endif
     // capped where the tone map is white anyway: no fp16 infinity reaches the mix below
     vec3 sun = min(sun_irr * min(p, 3.0e4), vec3(1.0e4));
@@ -572,7 +585,7 @@ void main()
 #ifdef QUALITY_HIGH
     float sigma = sqrt(max(var.x, var.y));
 #else
-    float sigma = inversesqrt(2.0 * min(v_base.x, v_base.y));
+    float sigma = inversesqrt(2.0 * min(ib.x, ib.y));
 #endif
     vec3 sky = sky_eq27(uv.zw, sigma) * sky_map_scale;
 #ifdef SWELL_REFLECT
