@@ -184,7 +184,10 @@ typedef struct swell_ocean_desc {
 
 /* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
  * later). The sea must outlive the ocean. Compiles the shaders and probes which the driver
- * runs; a program the driver refuses is replaced by one fetching less, never by no sea. */
+ * runs; a program the driver refuses is replaced by one fetching less, never by no sea. Where
+ * the driver refuses every program with the objects' passes (reflections, wakes, shadows,
+ * refractions; Vivante GC2000 does), the ocean is made without them: it draws the sea, and
+ * swell_ocean_begin_* and swell_ocean_set_wake fail with SWELL_E_ARG, saying why. */
 SWELL_API int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc,
                                  swell_ocean **out, struct swell_err *err);
 

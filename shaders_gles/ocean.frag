@@ -59,8 +59,8 @@ uniform mat3 refl_mat;              // a reflected ray (any length) -> the map's
 uniform vec4 refl_screen;           // gl_FragCoord -> the flat sea's map uv: scale xy, offset zw
 uniform vec4 refl_ray;              // gl_FragCoord -> the view ray in the eye frame, (x, y, -1)
 uniform vec4 refl_down;             // the eye frame's components of world -z; c / D_o
-uniform vec2 refl_blur;             // log2 of the map's level-0 texels per 2 rad, across (x)
-                                    // and along (y) (reflect.c)
+uniform vec2 refl_blur;             // twice the map's level-0 texels per 2 rad, across (x) and
+                                    // along (y) (reflect.c)
 uniform vec4 refl_levels;           // the map's last level across; 1 / its width, height;
                                     // log2 of its height (the atlas's last version)
 uniform vec2 refl_axes;             // squares of the world vertical's direction on the map
@@ -384,19 +384,19 @@ vec3 display_to_radiance(vec3 c)
 // d = 2 uv - 1, r ~ (2 d, 1 - d.d)), which already carries the pixel's slope. The map holds
 // display colours (the application's), premultiplied: they are taken back to radiance by
 // inverting tone_map, so a mirror (F = 1) would show an object as the application drew it.
-// Version (l, m) of the reflection map at uv (whole numbers): level l halved m more times along
-// the map's vertical, in the atlas (reflect.c's layout: level l's column at x 0 or 1 - 2^(1 - l),
-// y 0 or 2/3, version m 2/3 2^-l (1 - 2^-m) above it; the atlas is three heights tall); uv kept
-// half a texel inside the version, so no filter reads its neighbour's.
-vec4 refl_level(vec2 uv, float l, float m)
+// Version (l, m) of the reflection map: level l halved m more times along the map's vertical,
+// in the atlas (reflect.c's layout: level l's column at x 0 or 1 - 2^(1 - l), y 0 or 2/3,
+// version m 2/3 (2^-l - 2^-(l+m)) above it; the atlas is three heights tall). For s = 2^-l,
+// st = 2^-(l + m), up = 1 for l > 0, uv maps to x = s u + up (1 - 2 s), the same for all of a
+// level's versions (refl_x), and y = st (v - 2) / 3 + 2 (up + s) / 3 (refl_y's yv = (v - 2) / 3).
+float refl_x(float u, float s, float up)
 {
-    m = clamp(m, 0.0, min(float(REFL_RIP_M), refl_levels.w - l));
-    float s = exp2(-l), t = exp2(-m);
-    vec2 h = 0.5 * refl_levels.yz / vec2(s, s * t);
-    uv = clamp(uv, h, vec2(1.0) - h);
-    float up = step(0.5, l);
-    return texture2D(refl_tex, uv * vec2(s, s * t * (1.0 / 3.0)) +
-                               vec2(up * (1.0 - 2.0 * s), (2.0 / 3.0) * (up + s * (1.0 - t))));
+    return s * u + up * (1.0 - 2.0 * s);
+}
+
+vec4 refl_level(float x, float yv, float s, float st, float up)
+{
+    return texture2D(refl_tex, vec2(x, st * yv + (2.0 / 3.0) * (up + s)));
 }
 
 vec4 reflect_local(vec2 sky_uv, vec2 sig)
@@ -416,7 +416,7 @@ vec4 reflect_local(vec2 sky_uv, vec2 sig)
     // Eq. 27's ellipse, k times: a slope deviation along the view (sig.x) turns the reflected
     // ray in the plane of incidence by twice its angle, one across it (sig.y) turns it across
     // by 2 sin(depression) times it. Their standard deviations on the map in level-0 texels,
-    // t = sigma k 2^refl_blur per axis, with the world vertical's direction c on the map
+    // t = sigma k refl_blur / 2 per axis, with the world vertical's direction c on the map
     // (rolled views: the ellipse's extent along the map's axes). A version of the atlas
     // (reflect.c) is a box of 2^l texels across and 2^(l + m) along, read bilinearly: a kernel
     // of standard deviation 2^l / 2 (box and tent) - so the level across is log2(2 t.x) and
@@ -424,13 +424,25 @@ vec4 reflect_local(vec2 sky_uv, vec2 sig)
     // of one isotropic level kept at most 2:1 of the ellipse: an object's reflection was 5-6x
     // too wide across the view (test_reflect test_blur_width).
     vec2 s2 = sig * sig * vec2(1.0, sin_dep * sin_dep);
-    vec2 t = k * exp2(refl_blur) * sqrt(s2.x * refl_axes + s2.y * refl_axes.yx);
-    vec2 lv = log2(max(2.0 * t, vec2(1e-3)));
+    vec2 lv = log2(max(k * refl_blur * sqrt(s2.x * refl_axes + s2.y * refl_axes.yx),
+                       vec2(1e-3)));
     float lx = clamp(lv.x, 0.0, refl_levels.x);
     float l0 = floor(lx), l1 = min(l0 + 1.0, refl_levels.x);
-    float m = max(lv.y - l0, 0.0), m0 = floor(m);
-    vec4 c = mix(mix(refl_level(uv, l0, m0), refl_level(uv, l0, m0 + 1.0), m - m0),
-                 mix(refl_level(uv, l1, m0 - 1.0), refl_level(uv, l1, m0), m - m0), lx - l0);
+    // the level along, l0 + m: no finer than across, below the atlas's last version and within
+    // REFL_RIP_M of l0, so versions m0 and m0 + 1 of l0 exist; l1 = l0 + 1 reads the same
+    // levels along, versions m0 - 1 (at least 0) and m0
+    float m = min(clamp(lv.y, lx, refl_levels.w - 0.001) - l0, float(REFL_RIP_M) - 0.001);
+    float m0 = floor(m), tm = exp2(-m0), s0 = exp2(-l0), s1 = s0 * (1.0 - 0.5 * (l1 - l0));
+    float up0 = step(0.5, l0), up1 = step(0.5, l1);
+    // uv kept half a texel of the coarsest version read inside the map, so no filter reads a
+    // neighbour's texels (finer versions then stop a little short of the map's edge)
+    vec2 h = 0.5 * refl_levels.yz / vec2(s1, min(0.5 * s0, s1) * tm);
+    vec2 u = clamp(uv, h, vec2(1.0) - h);
+    float x0 = refl_x(u.x, s0, up0), x1 = refl_x(u.x, s1, up1), yv = (u.y - 2.0) * (1.0 / 3.0);
+    vec4 c = mix(mix(refl_level(x0, yv, s0, s0 * tm, up0),
+                     refl_level(x0, yv, s0, 0.5 * s0 * tm, up0), m - m0),
+                 mix(refl_level(x1, yv, s1, s1 * min(2.0 * tm, 1.0), up1),
+                     refl_level(x1, yv, s1, s1 * tm, up1), m - m0), lx - l0);
     // nothing where the ray leaves the map (behind the camera or past its margin)
     vec2 in_uv = step(vec2(0.0), uv) * step(uv, vec2(1.0));
     c *= step(0.0, q.z) * in_uv.x * in_uv.y;

@@ -132,10 +132,11 @@ def parse_fields(text):
 BEGIN = re.compile(r"^swell-program: begin (\S+) \+ (\S+) \[(.*)\] tier (\S+)$")
 
 
-def program_name(vs, defines):
+def program_name(vs, defines, fs=""):
     """The probe's name for a build: 'ocean k=1 kw=0 high', then ' cpu-vertex' with the
     vertex's terms on the CPU and ' no-detile' without the lattice (renderer.c
-    renderer_program_name), 'sky', 'sky sun'."""
+    renderer_program_name), 'sky', 'sky sun'; the reflection atlas's copy (reflect.c, an
+    objects program) 'reflection copy objects'."""
     d = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in defines.split())
     if vs.startswith("ocean"):
         objects = any(k in d for k in ("SWELL_REFLECT", "SWELL_WAKE", "SWELL_SHADOW",
@@ -146,6 +147,8 @@ def program_name(vs, defines):
             " cpu-vertex" if "CPU_VERTEX_TERMS" in d else "",
             " no-detile" if "SWELL_NO_DETILE" in d else "",
             " objects" if objects else "")
+    if fs.startswith("refl_copy"):
+        return "reflection copy objects"
     if vs.startswith("upscale"):
         return "upscale"
     if vs.startswith("boat"):
@@ -169,7 +172,7 @@ def parse_log(text, model):
         m = BEGIN.match(line)
         if m:
             tier = m.group(4)
-            span = [(program_name(m.group(1), m.group(3)), tier)]
+            span = [(program_name(m.group(1), m.group(3), m.group(2)), tier)]
             tiers[span[0]] = tier
             if span[0] not in order:
                 order.append(span[0])

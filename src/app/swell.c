@@ -135,6 +135,8 @@ static int boat_before(void *ctx, const struct camera *cam, double t, int w, int
     sun_direction(bs->sun_elev_deg, bs->sun_azim_deg, sun_dir);
     renderer_frame_view(r, cam, w, h, &bs->view);
     boat_pose_at(b, bs->tables, renderer_detile(r), t);
+    if (!renderer_objects(r))
+        return 0;   /* the driver runs no program with the passes: the boat on the bare sea */
     const struct boat_pose *p = boat_pose(b);
     const struct boat_desc *bd = boat_get_desc(b);
     struct renderer_wake wk = {
@@ -266,7 +268,7 @@ static int run_frames(const struct options *o, struct platform_handle *ph, struc
         if (keys.boat && boat) {
             boat_shown = !boat_shown;
             printf("swell: boat %s\n", boat_shown ? "shown" : "hidden");
-            if (!boat_shown && (rc = renderer_set_wake(r, NULL, err)))
+            if (!boat_shown && renderer_objects(r) && (rc = renderer_set_wake(r, NULL, err)))
                 break;
         }
         struct camera cam = live;

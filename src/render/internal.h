@@ -236,6 +236,8 @@ struct renderer {
     int probing;                      /* 1: no sky, cleared to 0 (the probe) */
     int probe_executes;               /* the device drew the probe's clear (not a noop shim) */
     int refused;                      /* variants the probe found refused */
+    int objects_refused;              /* the objects' passes were asked for, and the driver
+                                       * refused every program with them (renderer_open) */
     int detile_refused;               /* > 0: --detile auto turned the lattice off, with which
                                        * the probe found this many refused (renderer_create) */
     /* Local reflections (reflect.c, renderer_desc reflections) */
@@ -250,8 +252,8 @@ struct renderer {
     float refl_screen[4];             /* gl_FragCoord -> the flat sea's map uv */
     float refl_ray[4];                /* gl_FragCoord -> the eye-frame view ray */
     float refl_down[4];               /* world -z in the eye frame; camera height / distance */
-    float refl_blur[2];               /* the map's level-0 texels per 2 rad across (P00 w of
-                                       * the pass) and along (P11 h), log2 (ocean.frag) */
+    float refl_blur[2];               /* twice the map's level-0 texels per 2 rad across
+                                       * (2 P00 w of the pass) and along (2 P11 h) */
     float refl_axes[2];               /* (c_x^2, c_y^2): c the world vertical's unit direction
                                        * on the map at its centre (0, 1 without roll) */
     struct pass_saved refl_saved;     /* the application's state at begin */
@@ -347,6 +349,10 @@ int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err *err);
 
 /* reflect.c */
 int reflect_create(struct renderer *r, struct swell_err *err);
+/* The atlas's copy drawn once into a probe target (after the buffers exist), so a driver that
+ * refuses it says so at creation (SWELL_E_SHADER: renderer_open then makes the sea without
+ * the objects' passes); labelled for tools/devices.py as the ocean's probe is. */
+int reflect_probe(struct renderer *r, struct swell_err *err);
 void reflect_destroy(struct renderer *r);
 void reflect_uniforms(const struct renderer *r, const GLint *u);
 
@@ -410,5 +416,9 @@ void set_slot_lods(struct renderer *r, int k, int kw, uint32_t key, float alt, f
                    float lf_far, float lf_near);
 int slots_needed(const struct renderer *r, float d2, float alt, float pix_angle,
                  float drop, int resolved);
+
+/* The error of an objects' pass (what: "reflection target", ...) on a renderer whose driver
+ * refused them (objects_refused). */
+int renderer_objects_refused(const struct renderer *r, const char *what, struct swell_err *err);
 
 #endif

@@ -229,9 +229,11 @@ int probe_programs(struct renderer *r, struct swell_err *err)
                     n += px[4 * i + 3] > 0;
                 covered = n > PROBE_SIZE * PROBE_SIZE / 2;
             }
+            int objects = r->d.reflections || r->d.wakes || r->d.shadows || r->d.refractions;
             unsigned refuse = r->d.probe_refuse |
                               (renderer_detile(r) ? r->d.probe_refuse_detile : 0u) |
-                              (r->cpu_vterms ? 0u : r->d.probe_refuse_gpu_vertex);
+                              (r->cpu_vterms ? 0u : r->d.probe_refuse_gpu_vertex) |
+                              (objects && r->d.probe_refuse_objects ? ~0u : 0u);
             r->variant_ok[v] = !rc && !capture_refused(text) && covered &&
                                !((refuse >> (v & 31)) & 1u);
             if (label)

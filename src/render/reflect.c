@@ -30,7 +30,9 @@
  * for l = 0, 2h for l >= 1, plus 2 (h >> l) (1 - 2^-m) for version m.
  */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
+#include "gl/capture.h"
 #include "render/internal.h"
 
 
@@ -86,6 +88,53 @@ int reflect_create(struct renderer *r, struct swell_err *err)
     return pass_none_create(r, &r->refl_none, "reflection (none)", err);
 }
 
+/* one draw of the copy: version (0, m) of what unit UNIT_REFLECT holds into the bound target */
+static void copy_draw(struct renderer *r, int m)
+{
+    glUseProgram(r->refl_copy.program);
+    glUniform1i(r->refl_copy_u[0], r->d.texture_unit_first + UNIT_REFLECT);
+    glUniform2f(r->refl_copy_u[1], 1.0f / 16.0f, m > 0 ? (float)(1 << (m - 1)) : 1.0f);
+    glUniform1f(r->refl_copy_u[2], -(float)m);
+    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisableVertexAttribArray(0);
+}
+
+int reflect_probe(struct renderer *r, struct swell_err *err)
+{
+    if (!r->d.reflections)
+        return 0;
+    int label = shader_labels(), ok = 1;
+    struct gpu_probe_target pt;
+    gpu_probe_target_begin(&pt, 16);
+    if (pt.complete) {
+        char text[2048];
+        struct capture cap;
+        if (label)
+            fprintf(stderr, "swell-program: probe reflection copy objects\n");
+        capture_begin(&cap);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
+        glBindTexture(GL_TEXTURE_2D, r->refl_none);
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        copy_draw(r, REFL_RIP_M);
+        glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
+        capture_end(&cap, text, sizeof text);
+        ok = !capture_refused(text);
+        if (label)
+            fprintf(stderr, "swell-program: end %s\n", ok ? "ok" : "refused");
+    }
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    gpu_probe_target_end(&pt);
+    if (!ok)
+        return swell_fail(err, SWELL_E_SHADER, "renderer: the driver does not run the reflection "
+                          "atlas's copy (shaders_gles/refl_copy.frag; its messages are above)");
+    return 0;
+}
+
 static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *err)
 {
     int w, h;
@@ -120,6 +169,8 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
                               const struct renderer_reflection *d, struct renderer_pass *out,
                               struct swell_err *err)
 {
+    if (r->objects_refused)
+        return renderer_objects_refused(r, "reflection target", err);
     if (!r->d.reflections)
         return swell_fail(err, SWELL_E_ARG, "renderer: no reflection target: create the ocean "
                           "with reflections = 1");
@@ -170,9 +221,10 @@ int renderer_reflection_begin(struct renderer *r, const struct renderer_view *v,
     }
     /* eq. 27's footprint: a slope deviation sigma turns the reflected ray by 2 sigma, an
      * angle the map sees as 2 sigma P h / 2 = sigma P h texels at its centre (P00 w across,
-     * P11 h along: the pass's projection, the map's size) */
-    r->refl_blur[0] = log2f(out->proj[0] * (float)r->refl.w);
-    r->refl_blur[1] = log2f(out->proj[5] * (float)r->refl.h);
+     * P11 h along: the pass's projection, the map's size); ocean.frag takes twice that (the
+     * level whose kernel has that deviation, log2 of twice it) */
+    r->refl_blur[0] = 2.0f * out->proj[0] * (float)r->refl.w;
+    r->refl_blur[1] = 2.0f * out->proj[5] * (float)r->refl.h;
     /* gl_FragCoord to the flat sea's map uv, 0.5 + ndc / (2 m) */
     pass_screen_uv(v, r->refl_screen);
     /* gl_FragCoord to the eye-frame view ray ((ndc_x + P20) / P00, (ndc_y + P21) / P11, -1),

@@ -42,6 +42,8 @@ int renderer_refraction_begin(struct renderer *r, const struct renderer_view *v,
                               const struct renderer_refraction *d, struct renderer_pass *out,
                               struct swell_err *err)
 {
+    if (r->objects_refused)
+        return renderer_objects_refused(r, "refraction map", err);
     if (!r->d.refractions)
         return swell_fail(err, SWELL_E_ARG, "renderer: no refraction map: create the ocean with "
                           "refractions = 1");

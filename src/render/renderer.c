@@ -183,7 +183,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
         (rc = reflect_create(r, err)) || (rc = wake_create(r, err)) ||
         (rc = shadow_create(r, err)) || (rc = refract_create(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
-        (rc = probe_programs(r, err)))
+        (rc = probe_programs(r, err)) || (rc = reflect_probe(r, err)))
         goto fail;
     r->gpu_bytes = r->gpu->bytes - before;
     *out = r;
@@ -390,6 +390,25 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                  program_tags(r), r->refused);
 }
 
+/* After renderer_create gave rc: where the driver runs no ocean program of d's quality
+ * (probe_programs), the same sea in the other rather than none (low's vertex shader carries
+ * more of the shading, so either may be the one that fits). */
+static int other_quality(int rc, struct renderer_desc *d, struct renderer **out,
+                         void (*note)(void *user, const char *msg), void *user,
+                         struct swell_err *err)
+{
+    if (rc != SWELL_E_SHADER)
+        return rc;
+    char msg[1400];
+    int other = d->quality == QUALITY_HIGH ? QUALITY_LOW : QUALITY_HIGH;
+    snprintf(msg, sizeof msg, "%s\n%s quality does not run on this GPU; trying quality %s",
+             err ? err->msg : "", render_quality_name(d->quality), render_quality_name(other));
+    if (note)
+        note(user, msg);
+    d->quality = other;
+    return renderer_create(d, out, err);
+}
+
 int renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uint64_t budget,
                   void (*note)(void *user, const char *msg), void *user, struct renderer **out,
                   struct swell_err *err)
@@ -416,20 +435,36 @@ int renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uin
             return err ? err->code : SWELL_E_GL;
         rc = renderer_create(d, out, err);
     }
-    if (rc == SWELL_E_SHADER) {
-        /* the driver runs no ocean program of this quality (probe_programs): the same sea in
-         * the other rather than none (low's vertex shader carries more of the shading, so
-         * either may be the one that fits) */
-        int other = d->quality == QUALITY_HIGH ? QUALITY_LOW : QUALITY_HIGH;
-        snprintf(msg, sizeof msg, "%s\n%s quality does not run on this GPU; trying quality %s",
-                 err ? err->msg : "", render_quality_name(d->quality),
-                 render_quality_name(other));
+    int asked = d->quality;
+    rc = other_quality(rc, d, out, note, user, err);
+    if (rc == SWELL_E_SHADER && (d->reflections || d->wakes || d->shadows || d->refractions)) {
+        /* no program with the objects' passes runs here (GC2000: over its 256 instructions):
+         * the sea without them rather than none; the passes then say why they fail */
+        snprintf(msg, sizeof msg, "%s\nthe ocean's programs with the objects' passes "
+                 "(reflections, wakes, shadows, refractions) do not run on this GPU; trying the "
+                 "sea without them", err ? err->msg : "");
         if (note)
             note(user, msg);
-        d->quality = other;
-        rc = renderer_create(d, out, err);
+        d->reflections = d->wakes = d->shadows = d->refractions = 0;
+        d->quality = asked;
+        rc = other_quality(renderer_create(d, out, err), d, out, note, user, err);
+        if (!rc)
+            (*out)->objects_refused = 1;
     }
     if (rc)
         gpu_shutdown(gpu);
     return rc;
+}
+
+int renderer_objects(const struct renderer *r)
+{
+    return r->d.reflections || r->d.wakes || r->d.shadows || r->d.refractions;
+}
+
+int renderer_objects_refused(const struct renderer *r, const char *what, struct swell_err *err)
+{
+    return swell_fail(err, SWELL_E_ARG, "renderer: no %s: this GPU's driver refused every ocean "
+                      "program with the objects' passes, so the sea is drawn without "
+                      "reflections, wakes, shadows and refractions (its messages were at "
+                      "creation)", what);
 }

@@ -52,6 +52,9 @@ struct renderer_desc {
                                          * lattice of random offsets only (GC2000's case) */
     unsigned probe_refuse_gpu_vertex;   /* tests: the same for those whose vertex shader
                                          * evaluates the terms of the vertex (GC2000's) */
+    int probe_refuse_objects;           /* tests: 1: every program with the objects' passes
+                                         * (reflections, wakes, shadows, refractions) taken as
+                                         * refused (GC2000's since the reflections' ellipse) */
     int cpu_vertex_terms;               /* 1: on gles2-min the terms of each vertex on the CPU
                                          * (vshade.h) from the start; default 0: only where the
                                          * driver refuses ocean.vert's (renderer_create) */
@@ -234,6 +237,10 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out);
 /* 1 when the renderer reads the patterns through the lattice (desc detile resolved): the flag
  * sea.h's query takes to give the surface this renderer draws. */
 int  renderer_detile(const struct renderer *r);
+/* 1 when the renderer draws the objects' passes it was asked for (reflections, wakes, shadows,
+ * refractions); 0 without any, or where the driver refused every program with them and
+ * renderer_open made the sea without them (the passes then fail, saying so). */
+int  renderer_objects(const struct renderer *r);
 /* Ocean program v's name (k * 5 + kw, renderer_pixel_variant): "ocean k=K kw=KW QUALITY",
  * " no-detile" appended without the lattice; the start-up probe's labels, swell's shares. */
 void renderer_program_name(const struct renderer *r, int v, char *buf, size_t size);

@@ -41,6 +41,8 @@ int renderer_shadow_begin(struct renderer *r, const struct renderer_view *v,
                           const struct renderer_shadow *d, struct renderer_pass *out,
                           struct swell_err *err)
 {
+    if (r->objects_refused)
+        return renderer_objects_refused(r, "shadow map", err);
     if (!r->d.shadows)
         return swell_fail(err, SWELL_E_ARG, "renderer: no shadow map: create the ocean with "
                           "shadows = 1");

@@ -63,6 +63,8 @@ static int differs(double a, double b)
 
 int renderer_set_wake(struct renderer *r, const struct renderer_wake *w, struct swell_err *err)
 {
+    if (r->objects_refused)
+        return renderer_objects_refused(r, "wake map", err);
     if (!r->d.wakes)
         return swell_fail(err, SWELL_E_ARG, "renderer: no wake map: create the ocean with "
                           "wakes = 1");

@@ -1612,6 +1612,48 @@ static void test_refused_fallback(void **state)
     gpu_shutdown(&gpu);
 }
 
+/* A driver that refuses every program with the objects' passes (GC2000 since the reflections
+ * read eq. 27's ellipse: 285 of its 256 instructions in low quality): renderer_open makes the
+ * sea without them instead of failing (swell --boat exited 1 there), every pixel drawn with
+ * sea, and each pass then fails saying why. */
+static void test_objects_refused(void **state)
+{
+    (void)state;
+    struct camera c;
+    camera_defaults(&c);
+    c.pos[2] = 30.0;
+    c.pitch_deg = -20.0f;
+    for (int q = 0; q < QUALITY_COUNT; q++) {
+        struct gpu gpu;
+        struct renderer *r = NULL;
+        struct swell_err err = { 0 };
+        struct renderer_desc d = { 0 };
+        d.tables = &fx.tables;
+        d.quality = q;
+        d.debug_uncovered = 1;
+        d.reflections = d.wakes = d.shadows = d.refractions = 1;
+        d.probe_refuse_objects = 1;
+        assert_int_equal(renderer_open(&d, &gpu, TIER_GLES2_MIN, 0, NULL, NULL, &r, &err), 0);
+        assert_int_equal(renderer_objects(r), 0);
+        assert_int_equal(d.quality, q);   /* the quality asked, without the objects */
+        assert_int_equal(fx.ph.be->begin_frame(fx.ph.p, &err), 0);
+        assert_int_equal(renderer_frame(r, &c, 1.0, W, H, &err), 0);
+        assert_int_equal(fx.ph.be->present(fx.ph.p, &err), 0);
+        assert_int_equal(fx.ph.be->read_rgba(fx.ph.p, fx.img, &err), 0);
+        check_defined(fx.img, "the objects' programs refused");
+        struct renderer_view v;
+        struct renderer_pass pass;
+        renderer_frame_view(r, &c, W, H, &v);
+        assert_int_equal(renderer_reflection_begin(r, &v, NULL, &pass, &err), SWELL_E_ARG);
+        print_message("%s: %s\n", render_quality_name(q), err.msg);
+        assert_non_null(strstr(err.msg, "refused every ocean program with the objects"));
+        assert_int_equal(renderer_set_wake(r, NULL, &err), SWELL_E_ARG);
+        assert_non_null(strstr(err.msg, "wake map"));
+        renderer_destroy(r);
+        gpu_shutdown(&gpu);
+    }
+}
+
 /* A driver that refuses the vertex shaders evaluating the terms of each vertex (Vivante GC2000,
  * 256 instructions; renderer_create): on gles2-min they are built again with those terms on the
  * CPU (vshade.c), every program runs, the lattice stays, and the frame is the one the vertex
@@ -1752,6 +1794,7 @@ int main(void)
         cmocka_unit_test_teardown(test_foam_lod_paths, reset_fixture),
         cmocka_unit_test_teardown(test_glitter_width, reset_fixture),
         cmocka_unit_test_teardown(test_refused_fallback, reset_fixture),
+        cmocka_unit_test_teardown(test_objects_refused, reset_fixture),
         cmocka_unit_test_teardown(test_debug_variants, reset_fixture),
         cmocka_unit_test_teardown(test_detile_refused, reset_fixture),
         cmocka_unit_test_teardown(test_cpu_vertex_terms, reset_fixture),
