@@ -9,6 +9,8 @@
 #include <string.h>
 
 #include "core/parse.h"
+#include "gl/capture.h"
+#include "gl/shader.h"
 #include "tables/tables.h"
 
 /* GLES 3.0's GL_MAX_TEXTURE_LOD_BIAS, the same enum as EXT_texture_lod_bias's (GLES2/gl2.h has
@@ -456,4 +458,29 @@ void gpu_probe_target_end(struct gpu_probe_target *t)
     glDeleteFramebuffers(1, &t->fbo);
     glDeleteTextures(1, &t->tex);
     t->fbo = t->tex = 0;
+}
+
+int gpu_probe_draw(const char *name, int size, void (*draw)(void *ctx),
+                   int (*check)(void *ctx), void *ctx)
+{
+    int label = shader_labels(), ok = 1;
+    struct gpu_probe_target pt;
+    gpu_probe_target_begin(&pt, size);
+    if (pt.complete) {
+        char text[2048];
+        struct capture cap;
+        if (label)
+            fprintf(stderr, "swell-program: probe %s\n", name);
+        capture_begin(&cap);
+        draw(ctx);
+        glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
+        capture_end(&cap, text, sizeof text);
+        ok = !capture_refused(text) && !(pt.executes && check && !check(ctx));
+        if (label)
+            fprintf(stderr, "swell-program: end %s\n", ok ? "ok" : "refused");
+    }
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    gpu_probe_target_end(&pt);
+    return ok;
 }

@@ -96,5 +96,13 @@ struct gpu_probe_target {
 void gpu_probe_target_begin(struct gpu_probe_target *t, int size);
 /* The framebuffer bound before begin bound again; the target deleted. */
 void gpu_probe_target_end(struct gpu_probe_target *t);
+/* One probe draw of a program outside the ocean's (upscale.c's stretch, reflect.c's copy):
+ * draw(ctx) into a size x size probe target with stderr captured (capture.h); the driver runs
+ * it unless it said it cannot, or, where draws execute, check(ctx) (may be NULL) finds the
+ * target's pixels wrong. With SWELL_SHADER_LABELS=1 labelled "swell-program: probe NAME" ...
+ * "swell-program: end ok|refused" (tools/devices.py). GL errors it left are cleared; the
+ * framebuffer bound before is bound again. 1 when the driver runs it. */
+int gpu_probe_draw(const char *name, int size, void (*draw)(void *ctx),
+                   int (*check)(void *ctx), void *ctx);
 
 #endif

@@ -30,9 +30,7 @@
  * for l = 0, 2h for l >= 1, plus 2 (h >> l) (1 - 2^-m) for version m.
  */
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
-#include "gl/capture.h"
 #include "render/internal.h"
 
 
@@ -102,34 +100,22 @@ static void copy_draw(struct renderer *r, int m)
     glDisableVertexAttribArray(0);
 }
 
+/* the probe's draw: the copy's largest version over the transparent map */
+static void probe_copy(void *ctx)
+{
+    struct renderer *r = ctx;
+    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
+    glBindTexture(GL_TEXTURE_2D, r->refl_none);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    copy_draw(r, REFL_RIP_M);
+}
+
 int reflect_probe(struct renderer *r, struct swell_err *err)
 {
     if (!r->d.reflections)
         return 0;
-    int label = shader_labels(), ok = 1;
-    struct gpu_probe_target pt;
-    gpu_probe_target_begin(&pt, 16);
-    if (pt.complete) {
-        char text[2048];
-        struct capture cap;
-        if (label)
-            fprintf(stderr, "swell-program: probe reflection copy objects\n");
-        capture_begin(&cap);
-        glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
-        glBindTexture(GL_TEXTURE_2D, r->refl_none);
-        glDisable(GL_BLEND);
-        glDisable(GL_DEPTH_TEST);
-        copy_draw(r, REFL_RIP_M);
-        glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
-        capture_end(&cap, text, sizeof text);
-        ok = !capture_refused(text);
-        if (label)
-            fprintf(stderr, "swell-program: end %s\n", ok ? "ok" : "refused");
-    }
-    while (glGetError() != GL_NO_ERROR)
-        ;
-    gpu_probe_target_end(&pt);
-    if (!ok)
+    if (!gpu_probe_draw("reflection copy objects", 16, probe_copy, NULL, r))
         return swell_fail(err, SWELL_E_SHADER, "renderer: the driver does not run the reflection "
                           "atlas's copy (shaders_gles/refl_copy.frag; its messages are above)");
     return 0;

@@ -6,7 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl/capture.h"
 #include "tables/tables.h"   /* FORMAT_RGBA8 */
 
 #define PROBE_SIZE 16
@@ -41,10 +40,21 @@ static void draw_stretch(struct upscale *u, int w, int h)
  * refused where the driver says so on stderr (capture.h), or, where draws execute (a clear
  * reads back), where the colour does not arrive. Labelled for tools/devices.py with
  * SWELL_SHADER_LABELS=1, as the renderer's probe is. */
+static void probe_stretch(void *ctx)
+{
+    draw_stretch(ctx, PROBE_SIZE, PROBE_SIZE);
+}
+
+static int probe_green(void *ctx)
+{
+    uint8_t px[4] = { 0, 0, 0, 0 };
+    (void)ctx;
+    glReadPixels(PROBE_SIZE / 2, PROBE_SIZE / 2, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    return px[0] < 8 && px[1] > 247 && px[2] < 8;
+}
+
 static int probe(struct upscale *u, struct swell_err *err)
 {
-    int label = shader_labels(), ok = 1;
-    uint8_t px[4] = { 0, 0, 0, 0 };
     GLint prev = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev);
     glBindFramebuffer(GL_FRAMEBUFFER, u->fbo);
@@ -52,29 +62,7 @@ static int probe(struct upscale *u, struct swell_err *err)
     glClearColor(0.0f, 1.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev);
-    struct gpu_probe_target pt;
-    gpu_probe_target_begin(&pt, PROBE_SIZE);
-    if (pt.complete) {
-        char text[2048];
-        struct capture cap;
-        if (label)
-            fprintf(stderr, "swell-program: probe upscale\n");
-        capture_begin(&cap);
-        draw_stretch(u, PROBE_SIZE, PROBE_SIZE);
-        glFlush();   /* the drivers compile at the draw; glFinish hangs on lima's shim */
-        capture_end(&cap, text, sizeof text);
-        ok = !capture_refused(text);
-        if (ok && pt.executes) {
-            glReadPixels(PROBE_SIZE / 2, PROBE_SIZE / 2, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
-            ok = px[0] < 8 && px[1] > 247 && px[2] < 8;
-        }
-        if (label)
-            fprintf(stderr, "swell-program: end %s\n", ok ? "ok" : "refused");
-    }
-    while (glGetError() != GL_NO_ERROR)
-        ;
-    gpu_probe_target_end(&pt);
-    if (!ok)
+    if (!gpu_probe_draw("upscale", PROBE_SIZE, probe_stretch, probe_green, u))
         return swell_fail(err, SWELL_E_SHADER, "upscale: the driver does not run the stretch of "
                           "--scale (shaders_gles/upscale.*); use --scale 1");
     return SWELL_OK;
