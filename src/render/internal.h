@@ -349,10 +349,6 @@ int upload_sky(struct renderer *r, const struct sky *sk, struct swell_err *err);
 
 /* reflect.c */
 int reflect_create(struct renderer *r, struct swell_err *err);
-/* The atlas's copy drawn once into a probe target (after the buffers exist), so a driver that
- * refuses it says so at creation (SWELL_E_SHADER: renderer_open then makes the sea without
- * the objects' passes); labelled for tools/devices.py as the ocean's probe is. */
-int reflect_probe(struct renderer *r, struct swell_err *err);
 void reflect_destroy(struct renderer *r);
 void reflect_uniforms(const struct renderer *r, const GLint *u);
 

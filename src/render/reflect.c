@@ -67,7 +67,40 @@ void reflect_destroy(struct renderer *r)
     shader_program_destroy(&r->refl_copy);
 }
 
-/* The 1x1 transparent map a draw reads when no pass was drawn for it. */
+/* the probe's draw: the copy's largest version (its eight taps) over the transparent map, from
+ * a client-side quad (the renderer's buffers come later) */
+static void probe_copy(void *ctx)
+{
+    static const float quad[8] = { -1.0f, -1.0f, 1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f };
+    struct renderer *r = ctx;
+    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
+    glBindTexture(GL_TEXTURE_2D, r->refl_none);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(r->refl_copy.program);
+    glUniform1i(r->refl_copy_u[0], r->d.texture_unit_first + UNIT_REFLECT);
+    glUniform2f(r->refl_copy_u[1], 1.0f / 16.0f, (float)(1 << (REFL_RIP_M - 1)));
+    glUniform1f(r->refl_copy_u[2], -(float)REFL_RIP_M);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, quad);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisableVertexAttribArray(0);
+}
+
+/* The atlas's copy drawn once into a probe target, so a driver that refuses it says so at
+ * creation (SWELL_E_SHADER: renderer_open then makes the sea without the objects' passes);
+ * labelled for tools/devices.py as the ocean's probe is. */
+static int reflect_probe(struct renderer *r, struct swell_err *err)
+{
+    if (!gpu_probe_draw("reflection copy objects", 16, probe_copy, NULL, r))
+        return swell_fail(err, SWELL_E_SHADER, "renderer: the driver does not run the reflection "
+                          "atlas's copy (shaders_gles/refl_copy.frag; its messages are above)");
+    return 0;
+}
+
+/* The atlas's copy (probed) and the 1x1 transparent map a draw reads when no pass was drawn
+ * for it. */
 int reflect_create(struct renderer *r, struct swell_err *err)
 {
     static const char *const names[3] = { "frame_tex", "copy_step", "copy_bias" };
@@ -81,44 +114,9 @@ int reflect_create(struct renderer *r, struct swell_err *err)
         .uniform_locations = r->refl_copy_u, .attribs = attribs, .attrib_count = 1,
     };
     int rc = shader_program_build(&sd, &r->refl_copy, err);
-    if (rc)
+    if (rc || (rc = pass_none_create(r, &r->refl_none, "reflection (none)", err)))
         return rc;
-    return pass_none_create(r, &r->refl_none, "reflection (none)", err);
-}
-
-/* one draw of the copy: version (0, m) of what unit UNIT_REFLECT holds into the bound target */
-static void copy_draw(struct renderer *r, int m)
-{
-    glUseProgram(r->refl_copy.program);
-    glUniform1i(r->refl_copy_u[0], r->d.texture_unit_first + UNIT_REFLECT);
-    glUniform2f(r->refl_copy_u[1], 1.0f / 16.0f, m > 0 ? (float)(1 << (m - 1)) : 1.0f);
-    glUniform1f(r->refl_copy_u[2], -(float)m);
-    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glDisableVertexAttribArray(0);
-}
-
-/* the probe's draw: the copy's largest version over the transparent map */
-static void probe_copy(void *ctx)
-{
-    struct renderer *r = ctx;
-    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
-    glBindTexture(GL_TEXTURE_2D, r->refl_none);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
-    copy_draw(r, REFL_RIP_M);
-}
-
-int reflect_probe(struct renderer *r, struct swell_err *err)
-{
-    if (!r->d.reflections)
-        return 0;
-    if (!gpu_probe_draw("reflection copy objects", 16, probe_copy, NULL, r))
-        return swell_fail(err, SWELL_E_SHADER, "renderer: the driver does not run the reflection "
-                          "atlas's copy (shaders_gles/refl_copy.frag; its messages are above)");
-    return 0;
+    return reflect_probe(r, err);
 }
 
 static int ensure_target(struct renderer *r, int vw, int vh, struct swell_err *err)

@@ -183,7 +183,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
         (rc = reflect_create(r, err)) || (rc = wake_create(r, err)) ||
         (rc = shadow_create(r, err)) || (rc = refract_create(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
-        (rc = reflect_probe(r, err)) || (rc = probe_programs(r, err)))
+        (rc = probe_programs(r, err)))
         goto fail;
     r->gpu_bytes = r->gpu->bytes - before;
     *out = r;
