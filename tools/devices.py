@@ -425,8 +425,18 @@ def run(args):
                             model["name"], r["tier"], quality, r["program"], r["stage"],
                             [k for k, _ in pr])))
                 all_records += recs
-                m = re.findall(r"trying (?:--)?quality (\S+)", text)
-                drew = "none" if rc != 0 else (m[-1] if m else quality)
+                # the quality drawn: the last one renderer_open tried; after it gave up the
+                # objects' passes ("trying the sea without them") the one asked first again
+                tried = [(mm.start(), mm.group(1)) for mm in
+                         re.finditer(r"trying (?:--)?quality (\S+)", text)]
+                bare = [mm.start() for mm in re.finditer(r"trying the sea without them", text)]
+                drew = quality
+                if tried and (not bare or tried[-1][0] > bare[-1]):
+                    drew = tried[-1][1]
+                if bare:
+                    drew += ", no objects"
+                if rc != 0:
+                    drew = "none"
                 # the build drawn: with or without the lattice (the retry of --detile auto),
                 # and its fallbacks
                 tags = [m.group(2).strip() for m in map(BUILD.match, text.splitlines()) if m]
