@@ -372,7 +372,6 @@ void pass_screen_uv(const struct renderer_view *v, float out[4]);
  * REFL_RIP_M versions halved again and again along the map's vertical only (a ripmap's
  * column): eq. 27's ellipse is up to 2^REFL_RIP_M times longer along the view than across. */
 #define REFL_RIP_M 4
-#define REFL_RIP_M_STR "4"   /* the same for ocean.frag's defines (programs.c) */
 /* A view pass's field of view is the view's widened by this factor (tan of the half angles),
  * so a ray the waves tilt past the screen's edge still finds its object. */
 #define PASS_MARGIN 1.25f

@@ -10,6 +10,10 @@
 #include <string.h>
 #include "render/internal.h"
 
+/* a macro's value as a string literal (REFL_RIP_M into ocean.frag's defines) */
+#define STRINGIFY_(x) #x
+#define STRINGIFY(x) STRINGIFY_(x)
+
 static const char *const ocean_uniform_names[OU_COUNT] = {
     "world_to_clip", "pattern_uv_offset", "pattern_inv_size", "fresnel_tex", "sky_tex",
     "sky_map_scale", "sky_map_size", "sun_dir_world", "sun_irr", "sea_radiance", "foam_radiance",
@@ -109,7 +113,8 @@ int build_programs(struct renderer *r, struct swell_err *err)
                              r->run_lod ? " SWELL_RUN_LOD" : "",
                              renderer_detile(r) ? "" : " SWELL_NO_DETILE",
                              r->d.linear_output ? " SWELL_LINEAR_OUT" : "",
-                             r->d.reflections ? " SWELL_REFLECT REFL_RIP_M=" REFL_RIP_M_STR : "",
+                             r->d.reflections ? " SWELL_REFLECT REFL_RIP_M=" STRINGIFY(REFL_RIP_M)
+                                              : "",
                              r->d.wakes ? " SWELL_WAKE" : "",
                              r->d.shadows ? " SWELL_SHADOW" : "",
                              r->d.refractions ? " SWELL_REFRACT" : "");

@@ -53,13 +53,29 @@ static void app_view(swell_view *v)
     v->proj[9] = g_shift[1];
 }
 
-/* The board, drawn with view and proj relative to eye (double, as an application would). */
-static void draw_board(const float view[16], const float proj[16], const double eye[3])
+/* The board's corners (drawn relative to the pass's eye, in double, as an application would). */
+static const double g_board_quad[4][3] = { { BOARD_X, -BOARD_HW, 0.0 }, { BOARD_X, BOARD_HW, 0.0 },
+                                           { BOARD_X, -BOARD_HW, BOARD_TOP },
+                                           { BOARD_X, BOARD_HW, BOARD_TOP } };
+
+/* The sea drawn into fbo without (a) and with (b) a reflection pass of the quad `corner`. */
+static void pass_frames(swell_ocean *o, const swell_view *v, const swell_reflection_desc *rd,
+                        const double corner[4][3], GLuint fbo, double t, uint8_t *a, uint8_t *b)
 {
-    static const double corner[4][3] = { { BOARD_X, -BOARD_HW, 0.0 }, { BOARD_X, BOARD_HW, 0.0 },
-                                         { BOARD_X, -BOARD_HW, BOARD_TOP },
-                                         { BOARD_X, BOARD_HW, BOARD_TOP } };
-    frame_draw_quad(g_prog, view, proj, eye, corner);
+    struct swell_err err = { 0 };
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    if (swell_ocean_draw(o, v, t, &err))
+        fail_msg("swell_ocean_draw: %s", err.msg);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, a);
+    swell_pass pass;
+    if (swell_ocean_begin_reflection(o, v, rd, &pass, &err))
+        fail_msg("swell_ocean_begin_reflection: %s", err.msg);
+    frame_draw_quad(g_prog, pass.view, pass.proj, pass.camera_pos, corner);
+    if (swell_ocean_end_reflection(o, &err))
+        fail_msg("swell_ocean_end_reflection: %s", err.msg);
+    if (swell_ocean_draw(o, v, t, &err))
+        fail_msg("swell_ocean_draw: %s", err.msg);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, b);
 }
 
 /* The board's mirror image (its corners with z negated) on the screen: columns x0..x1, rows
@@ -110,20 +126,7 @@ static void reflect_frames(swell_ocean *o, const swell_view *v, const swell_refl
                            double t, double beyond, struct refl_stats *st)
 {
     static uint8_t a[W * H * 4], b[W * H * 4];
-    struct swell_err err = { 0 };
-    glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
-    if (swell_ocean_draw(o, v, t, &err))
-        fail_msg("swell_ocean_draw: %s", err.msg);
-    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, a);
-    swell_pass pass;
-    if (swell_ocean_begin_reflection(o, v, rd, &pass, &err))
-        fail_msg("swell_ocean_begin_reflection: %s", err.msg);
-    draw_board(pass.view, pass.proj, pass.camera_pos);
-    if (swell_ocean_end_reflection(o, &err))
-        fail_msg("swell_ocean_end_reflection: %s", err.msg);
-    if (swell_ocean_draw(o, v, t, &err))
-        fail_msg("swell_ocean_draw: %s", err.msg);
-    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, b);
+    pass_frames(o, v, rd, g_board_quad, g_fbo, t, a, b);
     static int dumps;
     if (getenv("REFLECT_DUMP")) {
         char name[512];
@@ -325,18 +328,7 @@ static void excess_frames(swell_ocean *o, const swell_view *v, const double corn
                           GLuint fbo, double t, double *acc)
 {
     static uint8_t a[W * H * 4], b[W * H * 4];
-    struct swell_err err = { 0 };
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    if (swell_ocean_draw(o, v, t, &err))
-        fail_msg("swell_ocean_draw: %s", err.msg);
-    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, a);
-    swell_pass pass;
-    if (swell_ocean_begin_reflection(o, v, &g_board, &pass, &err))
-        fail_msg("swell_ocean_begin_reflection: %s", err.msg);
-    frame_draw_quad(g_prog, pass.view, pass.proj, pass.camera_pos, corner);
-    if (swell_ocean_end_reflection(o, &err) || swell_ocean_draw(o, v, t, &err))
-        fail_msg("the reflection: %s", err.msg);
-    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, b);
+    pass_frames(o, v, &g_board, corner, fbo, t, a, b);
     for (int i = 0; i < W * H; i++)
         acc[i] += linear_red_excess(b + 4 * i) - linear_red_excess(a + 4 * i);
 }
