@@ -673,4 +673,12 @@ void main()
 #endif
     gl_FragColor = vec4(tone_map(clear_sea * v_fog.a + v_fog.rgb), 1.0);
 #endif
+#ifdef SWELL_SLOPE_OUT
+    // tests (renderer_desc slope_output): the slope drawn, as the half vector's slope less the
+    // pixel's (d, +-2), and the deviation of the variance below it, x + y (0..0.5)
+#ifndef QUALITY_HIGH
+    vec2 var = 0.5 / ib;
+#endif
+    gl_FragColor = vec4(clamp(0.5 + 0.25 * d, 0.0, 1.0), 2.0 * sqrt(var.x + var.y), 1.0);
+#endif
 }

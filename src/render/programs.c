@@ -94,7 +94,7 @@ void renderer_program_name(const struct renderer *r, int v, char *buf, size_t si
 
 int build_programs(struct renderer *r, struct swell_err *err)
 {
-    char defines[192];
+    char defines[256];
     struct shader_desc od = { 0 }, sd = { 0 };
     int rc;
     od.dir = sd.dir = r->d.shader_dir;
@@ -108,11 +108,12 @@ int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = (int)(sizeof(ocean_attribs) / sizeof(ocean_attribs[0]));
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s%s",
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s%s%s",
                              k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
                              r->run_lod ? " SWELL_RUN_LOD" : "",
                              renderer_detile(r) ? "" : " SWELL_NO_DETILE",
                              r->d.linear_output ? " SWELL_LINEAR_OUT" : "",
+                             r->d.slope_output ? " SWELL_SLOPE_OUT" : "",
                              r->d.reflections ? " SWELL_REFLECT REFL_RIP_M=" STRINGIFY(REFL_RIP_M)
                                               : "",
                              r->d.wakes ? " SWELL_WAKE" : "",

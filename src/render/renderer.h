@@ -69,6 +69,9 @@ struct renderer_desc {
                                          * for the application to tone-map (an RGBA8 target
                                          * clips it at 1); default 0: the display transform
                                          * (optics/tonemap.h) */
+    int slope_output;                   /* tests: 1: the sea's pixels hold the slope drawn
+                                         * and the variance below it (ocean.frag
+                                         * SWELL_SLOPE_OUT), not a radiance */
     int texture_unit_first;             /* the first texture unit the renderer binds; default
                                          * 0. An embedding application keeps those below */
     int texture_unit_count;             /* how many from there it may bind; default 0 = as
