@@ -328,6 +328,18 @@ static void use_baked(uint64_t budget, float wind)
     fx.tables = fx.baked;
 }
 
+/* use_baked at the default budget and wind, and Cox & Munk's slope variances x, y of that sea
+ * (spectrum_mss_cox_munk_xy) in cm. */
+static void use_baked_cox_munk(float wind, double cm[2])
+{
+    struct seastate ss = { 0 };
+    ss.wind_speed_mps = wind;
+    ss.budget_bytes = SWELL_BUDGET_DEFAULT;
+    seastate_resolve(&ss);
+    spectrum_mss_cox_munk_xy(&ss, &cm[0], &cm[1]);
+    use_baked(SWELL_BUDGET_DEFAULT, wind);
+}
+
 /* After every test, passed or failed: the synthetic tables and every knob back to default,
  * so one failure does not cascade into the tests after it. */
 static int reset_fixture(void **state)
@@ -1519,13 +1531,8 @@ static void test_glitter_width(void **state)
     g_exposure = 0.5f;
     double worst = 0.0;
     for (size_t w = 0; w < sizeof winds / sizeof winds[0]; w++) {
-        struct seastate ss = { 0 };
-        ss.wind_speed_mps = winds[w];
-        ss.budget_bytes = SWELL_BUDGET_DEFAULT;
-        seastate_resolve(&ss);
         double cm[2];
-        spectrum_mss_cox_munk_xy(&ss, &cm[0], &cm[1]);
-        use_baked(SWELL_BUDGET_DEFAULT, winds[w]);
+        use_baked_cox_munk(winds[w], cm);
         for (size_t q = 0; q < 2; q++) {
             double var[2];
             g_no_sun = 0;
@@ -1614,13 +1621,8 @@ static void test_slope_budget(void **state)
     const float l[3] = { -cosf(glm_rad(30.0f)), 0.0f, sinf(glm_rad(30.0f)) };
     double worst = 0.0;
     for (size_t w = 0; w < sizeof winds / sizeof winds[0]; w++) {
-        struct seastate ss = { 0 };
-        ss.wind_speed_mps = winds[w];
-        ss.budget_bytes = SWELL_BUDGET_DEFAULT;
-        seastate_resolve(&ss);
         double cm[2];
-        spectrum_mss_cox_munk_xy(&ss, &cm[0], &cm[1]);
-        use_baked(SWELL_BUDGET_DEFAULT, winds[w]);
+        use_baked_cox_munk(winds[w], cm);
         for (int lodp = 0; lodp < 2; lodp++)
             for (size_t q = 0; q < 2; q++) {
                 static struct slope_sums sum;
