@@ -44,7 +44,7 @@ boat_view="--camera -20,-30,14 --pitch -16 --heading 45 --sun 40,250"
 cg_frames=${BENCH_CG_FRAMES:-4}
 cg_tiers=${BENCH_CG_TIERS:-$tiers}
 cg_paths=${BENCH_CG_PATHS:-$paths}
-# Swell's own CPU work per frame (renderer.c calls these from renderer_frame; check with nm):
+# Swell's own CPU work per frame (frame.c renderer_draw calls these; check with nm):
 # grid projection + displacement, the vertices' shading on gles2-min (vshade.c), loop-frame
 # blending, the sea height under the camera; and the texture upload of the blend.
 cg_own="grid_update grid_projection vshade_fill stream_blend sea_surface_height"
@@ -85,7 +85,7 @@ def target: if .quality == "high" then .targets_ratio.high else .targets_ratio.l
 "|---|---:|---:|---:|---:|---|",
 (.bake[] | "| \(.preset) | \(.bake_seconds | f(2)) | \(.command_seconds | f(2)) | \(.target_seconds) | \(.bytes_gpu | mi) / \(.budget_bytes | mi) | \(if .bake_seconds <= .target_seconds then "pass" else "FAIL" end) |"),
 "\n## CPU instructions per frame (callgrind)\n",
-"Counted with `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=grid_update --toggle-collect=grid_projection --toggle-collect=vshade_fill --toggle-collect=stream_blend --toggle-collect=upload_chain`, costs under renderer_frame divided by the calls of grid_update or grid_projection; softpipe at a twentieth of the frame size, same aspect (swell's functions run the same on any driver; the upload's driver share is softpipe's).\n",
+"Counted with `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=grid_update --toggle-collect=grid_projection --toggle-collect=vshade_fill --toggle-collect=stream_blend --toggle-collect=sea_surface_height --toggle-collect=upload_chain_typed`, per frame the difference of two runs of N and 2N frames over N (the start-up probes and first blends cancel); softpipe at a twentieth of the frame size, same aspect (swell's functions run the same on any driver; the upload's driver share is softpipe's).\n",
 "vshade = vshade_fill, gles2-min's per-vertex shading on the CPU (what ocean.vert computes on the tiers with vertex texture fetch).\n",
 "| tier | camera | detile | frames | grid | vshade | stream_blend | swell total | upload (driver, softpipe) | result |",
 "|---|---|---|---:|---:|---:|---:|---:|---:|---|",
@@ -205,36 +205,42 @@ fi
 echo "bench: $done_n scenes in $(printf %.0f "$(calc "$(now) - $t_matrix")") s, $failed failed"
 
 # ---- CPU instructions per frame under callgrind ----------------------------------------------
-# Collection is switched on only inside swell's own functions (--toggle-collect); the caller
-# tree attributes each function's inclusive cost to renderer_frame (not renderer_create) and
-# counts its calls, so per frame = cost under renderer_frame / calls of grid_update (CPU grid) or
-# of grid_projection (the vertex-shader grid of tiers with vertex texture fetch). The run uses
-# softpipe at a twentieth of the size: swell's functions execute the same on any driver and the run is many
+# Collection is switched on only inside swell's own functions (--toggle-collect; none of them
+# calls another, so each toggles collection on and off once per call) and the upload. Each
+# function's inclusive cost is the largest of callgrind_annotate's entries for its name (one
+# function can be listed under more than one file, its inlined headers'). Two runs of N and 2N
+# frames: per frame = (cost(2N) - cost(N)) / N, so what renderer_open's start-up probes draw
+# (programs.c probe_draw, through the same functions) and the first frame's whole blends fall
+# out, whoever calls the functions (renderer_frame, renderer_draw). The runs use softpipe at a
+# twentieth of the size: swell's functions execute the same on any driver and the run is many
 # times quicker under valgrind; the upload's driver share is softpipe's (reported apart).
-cg_json() {   # cg_json TIER PATH DETILE OUTFILE -> JSON object on stdout
-    local file=$4
-    callgrind_annotate --inclusive=yes --tree=caller --threshold=100 "$file" 2>/dev/null | awk \
-        -v own="$cg_own" -v upl="$cg_upload" -v tier="$1" -v path="$2" -v detile="$3" '
-        function num(s) { gsub(/,/, "", s); return s + 0 }
-        /^[[:space:]]*$/ { ir = ""; calls = 0; next }
-        /< .*:renderer_frame \(/ {
-            ir = num($1); c = $0; sub(/.*renderer_frame \(/, "", c); sub(/x\).*/, "", c); calls = c + 0
-            next
+cg_costs() {   # cg_costs OUTFILE -> "function cost" lines, the largest entry per name
+    callgrind_annotate --inclusive=yes --auto=no --threshold=100 "$1" 2>/dev/null | awk '
+        /^ *[0-9,]+ \([ 0-9.]+%\) +[^ ]+:[A-Za-z_]/ {
+            c = $1; gsub(/,/, "", c); f = $0; sub(/^ *[0-9,]+ \([ 0-9.]+%\) +[^ ]*:/, "", f)
+            sub(/[ .].*/, "", f)
+            if (!(f in m) || c + 0 > m[f]) m[f] = c + 0
         }
-        /\* / && ir != "" {
-            split(own " " upl, names, " ")
-            for (k in names) if ($0 ~ (":" names[k] "( \\[|$)")) { cost[names[k]] = ir; n[names[k]] = calls }
-        }
+        END { for (f in m) print f, m[f] }'
+}
+cg_json() {   # cg_json TIER PATH DETILE N OUT_N OUT_2N -> JSON object on stdout
+    awk -v own="$cg_own" -v upl="$cg_upload" -v tier="$1" -v path="$2" -v detile="$3" -v n="$4" '
+        FNR == 1 { run++ }
+        { if (run == 1) a[$1] = $2; else b[$1] = $2 }
+        function per(f) { return ((f in b) ? b[f] : 0) - ((f in a) ? a[f] : 0) }
         END {
-            frames = n["grid_update"] > n["grid_projection"] ? n["grid_update"] : n["grid_projection"]
-            if (frames <= 0) { print "{\"tier\": \"" tier "\", \"path\": \"" path "\", \"detile\": \"" detile "\", \"error\": \"neither grid_update nor grid_projection seen\"}"; exit }
+            if (per("grid_update") + per("grid_projection") <= 0) {
+                print "{\"tier\": \"" tier "\", \"path\": \"" path "\", \"detile\": \"" detile "\", \"error\": \"neither grid_update nor grid_projection counted\"}"
+                exit
+            }
             split(own, o, " "); s = 0
-            for (k in o) s += cost[o[k]]
-            printf "{\"tier\": \"%s\", \"path\": \"%s\", \"detile\": \"%s\", \"frames\": %d, \"functions\": \"%s\", ", tier, path, detile, frames, own
-            printf "\"cpu_instructions_per_frame\": %.0f, \"grid_update_per_frame\": %.0f, ", s / frames, (cost["grid_update"] + cost["grid_projection"]) / frames
-            printf "\"vshade_fill_per_frame\": %.0f, \"stream_blend_per_frame\": %.0f, ", cost["vshade_fill"] / frames, cost["stream_blend"] / frames
-            printf "\"upload_chain_per_frame_softpipe\": %.0f}\n", cost[upl] / frames
-        }'
+            for (k in o) s += per(o[k])
+            printf "{\"tier\": \"%s\", \"path\": \"%s\", \"detile\": \"%s\", \"frames\": %d, \"functions\": \"%s\", ", tier, path, detile, n, own
+            printf "\"cpu_instructions_per_frame\": %.0f, \"grid_update_per_frame\": %.0f, ", s / n, (per("grid_update") + per("grid_projection")) / n
+            printf "\"vshade_fill_per_frame\": %.0f, \"stream_blend_per_frame\": %.0f, ", per("vshade_fill") / n, per("stream_blend") / n
+            printf "\"sea_surface_height_per_frame\": %.0f, ", per("sea_surface_height") / n
+            printf "\"upload_chain_per_frame_softpipe\": %.0f}\n", per(upl) / n
+        }' <(cg_costs "$5") <(cg_costs "$6")
 }
 if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
     toggles=""
@@ -257,16 +263,19 @@ if [ "$use_callgrind" = 1 ] && command -v valgrind >/dev/null 2>&1; then
     cg_detiles=$(for d in $detiles; do [ "$d" = auto ] && echo on off || echo "$d"; done | tr ' ' '\n' | sort -u)
     for t in $cg_tiers; do for p in $cg_paths; do for d in $cg_detiles; do
         n="$t-$p-detile-$d"
-        f="$out/callgrind/$n.out"
-        if GALLIUM_DRIVER=softpipe valgrind --tool=callgrind --callgrind-out-file="$f" \
-            --collect-atstart=no $toggles "$swell" --platform surfaceless --size "${cg_w}x$cg_h" \
-            --tables "$out/tables/$cg_scene" --path "$p" --tier "$t" \
-            --quality "$([ "$d" = off ] && echo low || echo high)" \
-            --detile "$d" --frames "$cg_frames" --fps 30 >"$out/logs/callgrind-$n.log" 2>&1; then
-            cg_json "$t" "$p" "$d" "$f" >"$out/callgrind/$n.json"
+        ok=1
+        for k in 1 2; do
+            f="$out/callgrind/$n-$k.out"
+            GALLIUM_DRIVER=softpipe valgrind --tool=callgrind --callgrind-out-file="$f" \
+                --collect-atstart=no $toggles "$swell" --platform surfaceless --size "${cg_w}x$cg_h" \
+                --tables "$out/tables/$cg_scene" --path "$p" --tier "$t" \
+                --quality "$([ "$d" = off ] && echo low || echo high)" \
+                --detile "$d" --frames $((k * cg_frames)) --fps 30 >"$out/logs/callgrind-$n-$k.log" 2>&1 ||
+                { ok=0; echo "bench: callgrind $n FAILED: $(tail -n 1 "$out/logs/callgrind-$n-$k.log")"; break; }
+        done
+        if [ "$ok" = 1 ]; then
+            cg_json "$t" "$p" "$d" "$cg_frames" "$out/callgrind/$n-1.out" "$out/callgrind/$n-2.out" >"$out/callgrind/$n.json"
             echo "bench: callgrind $n: $(jq -r '"\(.cpu_instructions_per_frame) instructions/frame (grid_update \(.grid_update_per_frame), vshade_fill \(.vshade_fill_per_frame), stream_blend \(.stream_blend_per_frame))"' "$out/callgrind/$n.json")"
-        else
-            echo "bench: callgrind $n FAILED: $(tail -n 1 "$out/logs/callgrind-$n.log")"
         fi
     done; done; done
 else
