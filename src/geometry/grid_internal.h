@@ -213,6 +213,17 @@ static inline int mip_level(float r, int top)
     return e < top ? e : top;
 }
 
+/* A bilinear fetch from the texel off bytes into the image's row (base) and the next (base_c),
+ * fractions vx, vy. */
+static inline f4 bilerp(const char *restrict base, const char *restrict base_c, int off, f4 vx,
+                        f4 vy)
+{
+    const float *a = (const float *)(base + off), *c = (const float *)(base_c + off);
+    f4 a0 = ld4(a), a1 = ld4(a + 4), c0 = ld4(c), c1 = ld4(c + 4);
+    f4 top = a0 + (a1 - a0) * vx, bot = c0 + (c1 - c0) * vx;
+    return top + (bot - top) * vy;
+}
+
 /* One tap's bilinear fetch: the tap's whole-texel offset (ox, oy) added to the footprint's
  * first texel (x, y). */
 static inline f4 tap4(const char *restrict base, const char *restrict base_c, int x, int y,
@@ -220,11 +231,7 @@ static inline f4 tap4(const char *restrict base, const char *restrict base_c, in
 {
     x = (x + ox) & wm;
     y = (y + oy) & hm;
-    int off = 16 * ((y << wshift) + y + x);   /* bytes: 16 (y (w + 1) + x) */
-    const float *a = (const float *)(base + off), *c = (const float *)(base_c + off);
-    f4 a0 = ld4(a), a1 = ld4(a + 4), c0 = ld4(c), c1 = ld4(c + 4);
-    f4 top = a0 + (a1 - a0) * vx, bot = c0 + (c1 - c0) * vx;
-    return top + (bot - top) * vy;
+    return bilerp(base, base_c, 16 * ((y << wshift) + y + x), vx, vy);   /* 16 (y (w + 1) + x) */
 }
 
 /* grid_project.c: the rest positions and footprints of a frame (0 when no sea is in view, else
