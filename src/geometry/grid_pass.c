@@ -213,9 +213,9 @@ static void disp_fetch(const struct disp_frame *f, const uint8_t *restrict hash,
             f4 ww = ld4(wv + e), nn;
             for (int k = 0; k < 4; k++)
                 nn[k] = ww[k] / sqrtf(s2[k]);
-            /* the taps' byte offsets by vectors (with the lanes read in the tap loop GCC kept a
-             * dozen pointers on the stack and reloaded them per tap: 1.38 M instructions a frame, now
-             * 1.14 M, surface view, rough, callgrind) */
+            /* the taps' byte offsets by vectors (with the lanes read in the tap loop GCC kept
+             * a dozen pointers on the stack and reloaded them per tap: 1.38 M instructions a
+             * frame, now 1.14 M; surface view, rough, callgrind) */
             i32x4 x4, y4;
             memcpy(&x4, ix + e, sizeof(x4));
             memcpy(&y4, iy + e, sizeof(y4));
