@@ -28,9 +28,9 @@ extern "C" {
 #endif
 
 #define SWELL_VERSION_MAJOR 0
-#define SWELL_VERSION_MINOR 4
+#define SWELL_VERSION_MINOR 5
 #define SWELL_VERSION_PATCH 0
-#define SWELL_VERSION_STRING "0.4.0"
+#define SWELL_VERSION_STRING "0.5.0"
 /* (major << 16) | (minor << 8) | patch, comparable with swell_version() */
 #define SWELL_VERSION_NUMBER \
     ((SWELL_VERSION_MAJOR << 16) | (SWELL_VERSION_MINOR << 8) | SWELL_VERSION_PATCH)
@@ -86,10 +86,30 @@ typedef struct swell_sea_desc {
     uint32_t seed;              /* random seed; 0 = the preset's or 1 */
     uint64_t budget_bytes;      /* GPU memory the tables and the renderer may take, bytes,
                                  * 1 MiB..1 GiB; 0 = the preset's or 16 MiB */
+    const char *const *options; /* NULL, or every other value of the sea state by swell-bake's
+                                 * option names, as name and value pairs ending in NULL:
+                                 * { "--spread", "4", "--patterns", "2", NULL }. Applied in
+                                 * order after the fields above; "--preset" loads a preset
+                                 * there. The names and ranges: swell_sea_usage, swell_sea_option */
+    void (*progress)(void *user, double done, const char *stage);
+                                /* NULL, or called while baking with done in [0, 1] and the
+                                 * stage's name ("spectrum", "whitecaps") */
+    void *progress_user;        /* progress's first argument */
 } swell_sea_desc;
 
 /* Bake a sea from a sea state (0.6 s at the default 16 MiB budget on a 2-core x86 VM). */
 SWELL_API int swell_sea_bake(const swell_sea_desc *desc, swell_sea **out, struct swell_err *err);
+/* Check a sea state as swell_sea_bake would, without baking: SWELL_E_ARG naming the first bad
+ * value (an option's text, a range, a preset), SWELL_E_BUDGET when it cannot fit its budget. */
+SWELL_API int swell_sea_check(const swell_sea_desc *desc, struct swell_err *err);
+/* 1 when name is an option swell_sea_desc options takes ("--wind", "--preset"), else 0. */
+SWELL_API int swell_sea_option(const char *name);
+enum swell_usage { SWELL_USAGE_SEA = 0, SWELL_USAGE_TABLES, SWELL_USAGE_DATA };
+/* --help text, one line per option with its argument, unit, default and range: the sea's
+ * options (SWELL_USAGE_SEA), the tables' (SWELL_USAGE_TABLES), or where presets and shaders
+ * are looked for (SWELL_USAGE_DATA). Written as snprintf does: at most cap bytes with the
+ * terminating 0 (buf may be NULL when cap is 0); returns the whole text's length. */
+SWELL_API size_t swell_sea_usage(int what, char *buf, size_t cap);
 /* Load tables baked by swell-bake (or swell_sea_save) from a directory. */
 SWELL_API int swell_sea_load(const char *dir, swell_sea **out, struct swell_err *err);
 /* Write the sea's tables to a directory, atomically (a reader sees the old set or the new). */
@@ -102,9 +122,57 @@ typedef struct swell_sea_info {
     float loop_period_s;        /* every table repeats after this many seconds */
     int patterns;               /* wave patterns of different sizes (Dupuy 2012) */
     float pattern_size_m[4];    /* each pattern's tile side, m */
-    uint64_t table_bytes;       /* bytes of all tables */
+    uint64_t table_bytes;       /* bytes of all tables (swell_sea_check_dir: of their files) */
+    /* the rest of the sea state (swell-bake --help) */
+    const char *spectrum;       /* "pm", "jonswap" or "tma" */
+    float wind_dir_deg;         /* direction the wind blows towards, CCW from east */
+    float fetch_km, depth_m;    /* depth 0: deep water */
+    uint32_t seed;
+    int frames;                 /* loop frames over the period */
+    int table_size;             /* the slope and whitecap tables' side, texels */
+    int geometry_size;          /* the displacement tables' side, texels */
+    /* what the bake measured */
+    double mss_resolved[2];     /* mean square slope the tables hold, along x and y */
+    double mss_unresolved[2];   /* the slope variance of waves finer than they hold (drawn as
+                                 * roughness, Bruneton 2010 §4.1), x and y */
+    float whitecap_epsilon;     /* Dupuy 2012 eq. 3's threshold on the summed foam memory */
+    float whitecap_breaking_fraction; /* the share of the sea breaking at a time */
+    float foam_recovery_per_s;  /* how fast the foam memory falls, per second */
+    const char *whitecap_model; /* "mom80" or "wu88": the whitecap fraction W from the wind */
+    float whitecap_fraction_model;    /* W by that model */
+    float whitecap_fraction_measured; /* the fraction the baked foam covers */
+    uint64_t resident_bytes;    /* RAM besides the tables: the streamed loop frames, a margin */
+    uint64_t gpu_bytes_max;     /* GPU memory a renderer of this sea takes at most (any tier,
+                                 * geometry, quality) */
+    uint64_t budget_bytes;      /* the budget it was baked for */
+    int tables;                 /* how many tables (swell_sea_get_table) */
 } swell_sea_info;
 SWELL_API void swell_sea_get_info(const swell_sea *sea, swell_sea_info *out);
+
+typedef struct swell_table_info {
+    char name[48];              /* its name, "slope_p0" (swell_sea_check_dir: its file's name,
+                                 * "slope_p0.ktx") */
+    const char *kind;           /* "slope", "whitecap", "disp", "fresnel", "fresnel_eff" */
+    const char *format;         /* "rgba8" and the like */
+    int pattern;                /* the wave pattern it belongs to; -1 for none */
+    int width, height, layers, levels;  /* texels, loop frames, mip levels */
+    uint64_t bytes;             /* all its levels and layers (swell_sea_check_dir: the file's) */
+} swell_table_info;
+/* Table i (0 <= i < info.tables) of a sea; SWELL_E_ARG when there is none. */
+SWELL_API int swell_sea_get_table(const swell_sea *sea, int i, swell_table_info *out,
+                                  struct swell_err *err);
+
+/* Check the tables in dir without loading them: each table's file against the manifest's
+ * length and checksum, and its header. fn (may be NULL) is called once per table the manifest
+ * lists (listed 1) and per other .ktx file in dir (listed 0, its kind and format "?"), with
+ * status SWELL_OK or the SWELL_E_* code of its first problem and msg saying it ("" when ok).
+ * info (may be NULL) gets the manifest's sea state and measures, or is zeroed when the manifest
+ * cannot be read (info->patterns 0). Returns SWELL_OK when every table is sound, else the first
+ * problem's code with err saying it. */
+typedef void (*swell_table_check_fn)(void *user, const swell_table_info *table, int listed,
+                                     int status, const char *msg);
+SWELL_API int swell_sea_check_dir(const char *dir, swell_table_check_fn fn, void *user,
+                                  swell_sea_info *info, struct swell_err *err);
 
 /* ---- the sea on the CPU ---------------------------------------------------------------- */
 

@@ -1,16 +1,53 @@
 /* api_sea.c - the public sea (include/swell.h): bake, load, save, describe, and the CPU query
  * over geometry/sea.h. A swell_sea is immutable once made, so queries need no lock. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "api/api.h"
 #include "bake/bake.h"
+#include "core/datadir.h"
 #include "core/preset.h"
+#include "tables/budget.h"
 #include "geometry/sea.h"
 #include "tables/tables_io.h"
 
 /* An override only where the descriptor names a value (0 keeps the preset's or the default). */
 #define SET_IF(field, value) do { if ((value) != 0) (field) = (value); } while (0)
+
+/* The sea state a descriptor asks for: the preset, the fields that are not 0, then the
+ * options in order. */
+static int desc_state(const swell_sea_desc *d, struct seastate *s, struct swell_err *err)
+{
+    int rc;
+    memset(s, 0, sizeof *s);
+    if (d->preset && (rc = preset_load(d->preset, s, err)))
+        return rc;
+    SET_IF(s->wind_speed_mps, d->wind_speed_mps);
+    SET_IF(s->wind_dir_deg, d->wind_dir_deg);
+    SET_IF(s->fetch_km, d->fetch_km);
+    SET_IF(s->depth_m, d->depth_m);
+    SET_IF(s->seed, d->seed);
+    SET_IF(s->budget_bytes, d->budget_bytes);
+    for (size_t i = 0; d->options && d->options[i]; i += 2) {
+        const char *name = d->options[i], *value = d->options[i + 1];
+        if (!value)
+            return swell_fail(err, SWELL_E_ARG, "swell_sea_desc options: '%s' has no value "
+                              "(options come as name and value pairs ending in NULL)", name);
+        if (!strcmp(name, "--preset")) {
+            if ((rc = preset_load(value, s, err)))
+                return rc;
+            continue;
+        }
+        const struct seastate_field *f = seastate_option(name);
+        if (!f)
+            return swell_fail(err, SWELL_E_ARG, "swell_sea_desc options: no option '%s' "
+                              "(swell_sea_usage lists them)", name);
+        if ((rc = seastate_set_option(s, f, value, err)))
+            return rc;
+    }
+    return SWELL_OK;
+}
 
 int swell_sea_bake(const swell_sea_desc *desc, swell_sea **out, struct swell_err *err)
 {
@@ -21,25 +58,58 @@ int swell_sea_bake(const swell_sea_desc *desc, swell_sea **out, struct swell_err
         return swell_fail(err, SWELL_E_ARG, "swell_sea_bake: out is NULL");
     *out = NULL;
     struct seastate s;
-    memset(&s, 0, sizeof s);
-    if (d->preset && preset_load(d->preset, &s, err))
-        return err ? err->code : SWELL_E_ARG;
-    SET_IF(s.wind_speed_mps, d->wind_speed_mps);
-    SET_IF(s.wind_dir_deg, d->wind_dir_deg);
-    SET_IF(s.fetch_km, d->fetch_km);
-    SET_IF(s.depth_m, d->depth_m);
-    SET_IF(s.seed, d->seed);
-    SET_IF(s.budget_bytes, d->budget_bytes);
+    int rc = desc_state(d, &s, err);
+    if (rc)
+        return rc;
     swell_sea *sea = calloc(1, sizeof *sea);
     if (!sea)
         return swell_fail(err, SWELL_E_NOMEM, "swell_sea_bake: no memory for a sea");
-    int rc = swell_bake(&s, NULL, &sea->tables, err);
+    struct bake_opts bo = { .progress = d->progress, .user = d->progress_user };
+    rc = swell_bake(&s, &bo, &sea->tables, err);
     if (rc) {
         free(sea);
         return rc;
     }
     *out = sea;
     return SWELL_OK;
+}
+
+int swell_sea_check(const swell_sea_desc *desc, struct swell_err *err)
+{
+    swell_sea_desc d0;
+    memset(&d0, 0, sizeof d0);
+    struct seastate s;
+    int rc = desc_state(desc ? desc : &d0, &s, err);
+    return rc ? rc : bake_check(&s, err);
+}
+
+int swell_sea_option(const char *name)
+{
+    return name && (!strcmp(name, "--preset") || seastate_option(name) != NULL);
+}
+
+size_t swell_sea_usage(int what, char *buf, size_t cap)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f) {
+        if (cap)
+            buf[0] = '\0';
+        return 0;
+    }
+    if (what == SWELL_USAGE_DATA)
+        data_dir_usage(f);
+    else
+        seastate_usage(f, what == SWELL_USAGE_TABLES);
+    fclose(f);
+    if (cap) {
+        size_t n = len < cap - 1 ? len : cap - 1;
+        memcpy(buf, text, n);
+        buf[n] = '\0';
+    }
+    free(text);
+    return len;
 }
 
 int swell_sea_load(const char *dir, swell_sea **out, struct swell_err *err)
@@ -74,19 +144,114 @@ void swell_sea_destroy(swell_sea *sea)
     free(sea);
 }
 
-void swell_sea_get_info(const swell_sea *sea, swell_sea_info *out)
+/* A set's description (its sea state and what the bake measured) into out. */
+static void tables_info(const struct swell_tables *t, swell_sea_info *out)
 {
     memset(out, 0, sizeof *out);
-    if (!sea)
-        return;
-    const struct swell_tables *t = &sea->tables;
     out->wind_speed_mps = t->state.wind_speed_mps;
     out->significant_height_m = t->hs_m;
     out->loop_period_s = t->loop_period_s;
     out->patterns = t->patterns;
-    for (int i = 0; i < t->patterns && i < 4; i++)
+    for (int i = 0; i < t->patterns && i < 4; i++) {
         out->pattern_size_m[i] = t->pattern[i].size_m;
+        out->mss_resolved[0] += t->pattern[i].mss_x;
+        out->mss_resolved[1] += t->pattern[i].mss_y;
+    }
     out->table_bytes = tables_bytes(t);
+    out->spectrum = spectrum_name(t->state.spectrum);
+    out->wind_dir_deg = t->state.wind_dir_deg;
+    out->fetch_km = t->state.fetch_km;
+    out->depth_m = t->state.depth_m;
+    out->seed = t->state.seed;
+    out->frames = t->frames;
+    out->table_size = t->state.size_fs;
+    out->geometry_size = t->state.size_geo;
+    out->mss_unresolved[0] = t->mss_unresolved_x;
+    out->mss_unresolved[1] = t->mss_unresolved_y;
+    out->whitecap_epsilon = t->whitecap_epsilon;
+    out->whitecap_breaking_fraction = t->whitecap_breaking_fraction;
+    out->foam_recovery_per_s = t->foam_recovery_per_s;
+    out->whitecap_model = whitecap_model_name(t->state.whitecap_model);
+    out->whitecap_fraction_model = t->whitecap_fraction_model;
+    out->whitecap_fraction_measured = t->whitecap_fraction_measured;
+    out->resident_bytes = budget_resident_bytes(t->patterns, t->state.size_fs);
+    out->gpu_bytes_max = budget_gpu_bytes(&t->state);
+    out->budget_bytes = t->state.budget_bytes;
+    out->tables = t->count;
+}
+
+void swell_sea_get_info(const swell_sea *sea, swell_sea_info *out)
+{
+    memset(out, 0, sizeof *out);
+    if (sea)
+        tables_info(&sea->tables, out);
+}
+
+int swell_sea_get_table(const swell_sea *sea, int i, swell_table_info *out,
+                        struct swell_err *err)
+{
+    if (!sea || !out || i < 0 || i >= sea->tables.count)
+        return swell_fail(err, SWELL_E_ARG, "swell_sea_get_table: no table %d (the sea has %d; "
+                          "sea and out must not be NULL)", i, sea ? sea->tables.count : 0);
+    const struct swell_table *t = &sea->tables.table[i];
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "%s", t->name);
+    out->kind = table_kind_name(t->kind);
+    out->format = table_format_name(t->format);
+    out->pattern = t->pattern;
+    out->width = t->width;
+    out->height = t->height;
+    out->layers = t->layers;
+    out->levels = t->levels;
+    out->bytes = table_bytes(t);
+    return SWELL_OK;
+}
+
+struct check_ctx {
+    swell_table_check_fn fn;
+    void *user;
+};
+
+static void check_row(void *user, const struct tables_verify_entry *e)
+{
+    const struct check_ctx *c = user;
+    swell_table_info ti;
+    memset(&ti, 0, sizeof ti);
+    snprintf(ti.name, sizeof ti.name, "%s", e->file);
+    ti.kind = e->listed ? table_kind_name(e->kind) : "?";
+    ti.format = e->listed ? table_format_name(e->format) : "?";
+    ti.pattern = e->pattern;
+    ti.width = e->width;
+    ti.height = e->height;
+    ti.layers = e->layers;
+    ti.levels = e->levels;
+    ti.bytes = e->bytes;
+    c->fn(c->user, &ti, e->listed, e->status, e->msg);
+}
+
+int swell_sea_check_dir(const char *dir, swell_table_check_fn fn, void *user,
+                        swell_sea_info *info, struct swell_err *err)
+{
+    if (info)
+        memset(info, 0, sizeof *info);
+    if (!dir)
+        return swell_fail(err, SWELL_E_ARG, "swell_sea_check_dir: dir is NULL");
+    struct tables_manifest *m = calloc(1, sizeof *m);
+    if (!m)
+        return swell_fail(err, SWELL_E_NOMEM, "swell_sea_check_dir: no memory for a manifest");
+    struct check_ctx c = { fn, user };
+    struct swell_err e2 = { 0 };
+    int rc = tables_verify_dir(dir, fn ? check_row : NULL, &c, m, err ? err : &e2);
+    /* the manifest was read when it listed tables, sound or not */
+    if (info && (rc == SWELL_OK || m->set.count > 0)) {
+        tables_info(&m->set, info);
+        uint64_t files = 0;
+        for (int i = 0; i < m->set.count; i++)
+            files += m->entry[i].file_bytes;
+        info->table_bytes = files;
+    }
+    free(m);
+    return rc;
 }
 
 int swell_sea_sample(const swell_sea *sea, const swell_sample_desc *desc, const double *xy,

@@ -152,7 +152,7 @@ int options_parse(int argc, char **argv, struct options *o)
         "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", "--boat",
         NULL,
     };
-    struct args args = { "swell", argc, argv, 1, flags, valued, 0, usage,
+    struct args args = { "swell", argc, argv, 1, flags, valued, NULL, usage,
                          "swell " SWELL_VERSION_STRING };
     struct swell_err err = { 0 };
     const char *a, *v;

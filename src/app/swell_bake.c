@@ -5,6 +5,9 @@
  *
  * main is a straight line: options -> sea state -> bake -> save -> report. Library code returns
  * errors; only this file prints and exits (0 ok, 1 runtime failure, 2 usage error).
+ * Built on the public API alone (include/swell.h), besides the command-line walk (core/args.h)
+ * and the atomic file write (core/fsutil.h): tests/cli/test_public_api.sh checks its object
+ * calls nothing else of the library.
  */
 #include <math.h>
 #include <stdio.h>
@@ -14,23 +17,32 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "bake/bake.h"
-#include "core/args.h"
-#include "core/datadir.h"
 #include "swell.h"
+#include "core/args.h"
 #include "core/fsutil.h"
-#include "core/parse.h"
-#include "core/preset.h"
-#include "tables/budget.h"
-#include "tables/tables_io.h"
 
+/* the sea-state options as given, name and value pairs (swell_sea_desc options) */
+#define MAX_SEA_ARGS 256
 
 struct options {
-    struct seastate state;
+    const char *sea[2 * MAX_SEA_ARGS + 1];
+    int nsea;
     const char *out_dir;
     const char *report;
     int quiet;
 };
+
+/* One of swell_sea_usage's texts on f. */
+static void print_usage_text(FILE *f, int what)
+{
+    size_t n = swell_sea_usage(what, NULL, 0);
+    char *buf = malloc(n + 1);
+    if (!buf)
+        return;
+    swell_sea_usage(what, buf, n + 1);
+    fputs(buf, f);
+    free(buf);
+}
 
 static void usage(FILE *f)
 {
@@ -42,9 +54,9 @@ static void usage(FILE *f)
 "  --preset NAME|FILE.preset  load a preset (calm, moderate, rough, storm; budgets tiny,\n"
 "                             default; Data, below); may repeat; later options override it\n"
 "");
-    seastate_usage(f, 0);
+    print_usage_text(f, SWELL_USAGE_SEA);
     fprintf(f, "\nTables:\n");
-    seastate_usage(f, 1);
+    print_usage_text(f, SWELL_USAGE_TABLES);
     fprintf(f,
 "\n"
 "Output:\n"
@@ -52,7 +64,7 @@ static void usage(FILE *f)
 "  --report FILE     write statistics as JSON (hs_m, mss, whitecap threshold and fractions, bytes)\n"
 "  --quiet           no summary, no progress\n"
 "  --help, --version\n\n");
-    data_dir_usage(f);
+    print_usage_text(f, SWELL_USAGE_DATA);
 }
 
 /* The report's folder must exist before a bake starts, so a typo never fails after the
@@ -130,26 +142,37 @@ static int parse_args(int argc, char **argv, struct options *o)
 {
     static const char *const flags[] = { "--quiet", NULL };
     static const char *const valued[] = { "--preset", "--out", "--report", NULL };
-    struct args args = { "swell-bake", argc, argv, 1, flags, valued, 1, usage,
+    struct args args = { "swell-bake", argc, argv, 1, flags, valued, swell_sea_option, usage,
                          "swell-bake " SWELL_VERSION_STRING };
     struct swell_err err = { 0 };
-    struct seastate *s = &o->state;
     const char *a, *v;
-    int r = 0, k;
-    while (!r && (k = args_next(&args, &a, &v)) != ARGS_END) {
+    int k;
+    while ((k = args_next(&args, &a, &v)) != ARGS_END) {
         if (k == ARGS_ERROR)
             return 2;
         if (k == ARGS_DONE)
             exit(0);
         if (!strcmp(a, "--quiet")) o->quiet = 1;
-        else if (!strcmp(a, "--preset")) r = preset_load(v, s, &err);
         else if (!strcmp(a, "--out")) o->out_dir = v;
         else if (!strcmp(a, "--report")) o->report = v;
-        else r = seastate_set_option(s, seastate_option(a), v, &err);
+        else if (o->nsea == MAX_SEA_ARGS) {
+            fprintf(stderr, "swell-bake: more than %d sea-state options\n", MAX_SEA_ARGS);
+            return 2;
+        } else {
+            /* --preset and the sea state's options, in order: the sea's descriptor reads
+             * them (a later one overrides an earlier) */
+            o->sea[2 * o->nsea] = a;
+            o->sea[2 * o->nsea + 1] = v;
+            o->nsea++;
+        }
     }
+    o->sea[2 * o->nsea] = NULL;
+    /* the first bad value named before anything is baked or written */
+    swell_sea_desc d = { .options = o->sea };
+    int r = swell_sea_check(&d, &err);
     if (r) {
         fprintf(stderr, "swell-bake: %s\n", err.msg);
-        return 2;
+        return r == SWELL_E_BUDGET ? 1 : 2;   /* a budget too small is found at bake time */
     }
     if (!o->out_dir) {
         fprintf(stderr, "swell-bake: --out DIR is required (see --help)\n");
@@ -182,106 +205,102 @@ static void on_progress(void *user, double done, const char *stage)
     p->shown = 1;
 }
 
-static double mss_resolved(const struct swell_tables *t, int axis)
-{
-    double m = 0.0;
-    for (int i = 0; i < t->patterns; i++)
-        m += axis ? t->pattern[i].mss_y : t->pattern[i].mss_x;
-    return m;
-}
-
-static int write_report(const char *path, const struct swell_tables *t, double seconds,
+static int write_report(const char *path, const swell_sea *sea, double seconds,
                         struct swell_err *err)
 {
     size_t cap = 16384, len = 0;
     char *buf = malloc(cap);
-    if (!buf)
-        return swell_fail(err, SWELL_E_NOMEM, "report buffer");
-    double rx = mss_resolved(t, 0), ry = mss_resolved(t, 1);
-    uint64_t tb = tables_bytes(t);
-    uint64_t resident = budget_resident_bytes(t->patterns, t->state.size_fs);
+    if (!buf) {
+        snprintf(err->msg, sizeof err->msg, "no memory for the report");
+        return err->code = SWELL_E_NOMEM;
+    }
+    swell_sea_info t;
+    swell_sea_get_info(sea, &t);
+    double rx = t.mss_resolved[0], ry = t.mss_resolved[1];
+    double ux = t.mss_unresolved[0], uy = t.mss_unresolved[1];
 #define OUT(...) len += (size_t)snprintf(buf + len, len < cap ? cap - len : 0, __VA_ARGS__)
     OUT("{\n  \"generator\": \"swell-bake " SWELL_VERSION_STRING "\",\n");
-    OUT("  \"wind_speed_mps\": %.9g,\n  \"spectrum\": \"%s\",\n", t->state.wind_speed_mps,
-        spectrum_name(t->state.spectrum));
-    OUT("  \"hs_m\": %.9g,\n", t->hs_m);
-    OUT("  \"mss_x\": %.9g,\n  \"mss_y\": %.9g,\n", rx + t->mss_unresolved_x,
-        ry + t->mss_unresolved_y);
+    OUT("  \"wind_speed_mps\": %.9g,\n  \"spectrum\": \"%s\",\n", t.wind_speed_mps, t.spectrum);
+    OUT("  \"hs_m\": %.9g,\n", t.significant_height_m);
+    OUT("  \"mss_x\": %.9g,\n  \"mss_y\": %.9g,\n", rx + ux, ry + uy);
     OUT("  \"mss_resolved\": %.9g,\n  \"mss_unresolved\": %.9g,\n  \"mss_total\": %.9g,\n",
-        rx + ry, (double)t->mss_unresolved_x + t->mss_unresolved_y,
-        rx + ry + t->mss_unresolved_x + t->mss_unresolved_y);
+        rx + ry, ux + uy, rx + ry + ux + uy);
     OUT("  \"whitecap_epsilon\": %.9g,\n  \"whitecap_breaking_fraction\": %.9g,\n"
-        "  \"foam_recovery_per_s\": %.9g,\n", t->whitecap_epsilon,
-        t->whitecap_breaking_fraction, t->foam_recovery_per_s);
-    OUT("  \"whitecap_model\": \"%s\",\n", whitecap_model_name(t->state.whitecap_model));
+        "  \"foam_recovery_per_s\": %.9g,\n", t.whitecap_epsilon, t.whitecap_breaking_fraction,
+        t.foam_recovery_per_s);
+    OUT("  \"whitecap_model\": \"%s\",\n", t.whitecap_model);
     OUT("  \"whitecap_fraction_model\": %.9g,\n  \"whitecap_fraction_measured\": %.9g,\n",
-        t->whitecap_fraction_model, t->whitecap_fraction_measured);
-    OUT("  \"patterns\": %d,\n  \"frames\": %d,\n  \"loop_period_s\": %.9g,\n", t->patterns,
-        t->frames, t->loop_period_s);
-    OUT("  \"size_fs\": %d,\n  \"size_geo\": %d,\n", t->state.size_fs, t->state.size_geo);
+        t.whitecap_fraction_model, t.whitecap_fraction_measured);
+    OUT("  \"patterns\": %d,\n  \"frames\": %d,\n  \"loop_period_s\": %.9g,\n", t.patterns,
+        t.frames, t.loop_period_s);
+    OUT("  \"size_fs\": %d,\n  \"size_geo\": %d,\n", t.table_size, t.geometry_size);
     OUT("  \"pattern_sizes_m\": [");
-    for (int i = 0; i < t->patterns; i++)
-        OUT("%s%.9g", i ? ", " : "", t->pattern[i].size_m);
+    for (int i = 0; i < t.patterns; i++)
+        OUT("%s%.9g", i ? ", " : "", t.pattern_size_m[i]);
     OUT("],\n  \"bytes_tables\": %llu,\n  \"bytes_resident\": %llu,\n  \"bytes_gpu\": %llu,\n",
-        (unsigned long long)tb, (unsigned long long)resident,
-        (unsigned long long)(tb + resident));
+        (unsigned long long)t.table_bytes, (unsigned long long)t.resident_bytes,
+        (unsigned long long)(t.table_bytes + t.resident_bytes));
     OUT("  \"budget_bytes\": %llu,\n  \"bake_seconds\": %.3f,\n",
-        (unsigned long long)t->state.budget_bytes, seconds);
+        (unsigned long long)t.budget_bytes, seconds);
     OUT("  \"tables\": [\n");
-    for (int i = 0; i < t->count; i++) {
-        const struct swell_table *tb_i = &t->table[i];
+    for (int i = 0; i < t.tables; i++) {
+        swell_table_info ti;
+        if (swell_sea_get_table(sea, i, &ti, err)) {
+            free(buf);
+            return err->code;
+        }
         OUT("    {\"name\": \"%s\", \"kind\": \"%s\", \"pattern\": %d, \"format\": \"%s\", "
-            "\"width\": %d, \"height\": %d, \"layers\": %d, \"levels\": %d, \"bytes\": %zu}%s\n",
-            tb_i->name, table_kind_name(tb_i->kind), tb_i->pattern,
-            table_format_name(tb_i->format), tb_i->width, tb_i->height, tb_i->layers,
-            tb_i->levels, table_bytes(tb_i), i + 1 < t->count ? "," : "");
+            "\"width\": %d, \"height\": %d, \"layers\": %d, \"levels\": %d, \"bytes\": %llu}%s\n",
+            ti.name, ti.kind, ti.pattern, ti.format, ti.width, ti.height, ti.layers, ti.levels,
+            (unsigned long long)ti.bytes, i + 1 < t.tables ? "," : "");
     }
     OUT("  ]\n}\n");
 #undef OUT
     int r = 0;
-    if (len >= cap)
-        r = swell_fail(err, SWELL_E_ARG, "report larger than %zu bytes", cap);
-    else
+    if (len >= cap) {
+        snprintf(err->msg, sizeof err->msg, "report larger than %zu bytes", cap);
+        r = err->code = SWELL_E_ARG;
+    } else {
         r = fs_write_atomic(path, buf, len, err);
+    }
     free(buf);
     return r;
 }
 
-static void print_summary(const struct swell_tables *t, const char *dir, double seconds)
+static void print_summary(const swell_sea *sea, const char *dir, double seconds)
 {
-    double rx = mss_resolved(t, 0), ry = mss_resolved(t, 1);
-    uint64_t tb = tables_bytes(t), res = budget_resident_bytes(t->patterns, t->state.size_fs);
+    swell_sea_info t;
+    swell_sea_get_info(sea, &t);
+    double rx = t.mss_resolved[0], ry = t.mss_resolved[1];
     printf("swell-bake: %s, U10 %.1f m/s, fetch %.0f km: Hs %.2f m, mss %.4f (resolved %.4f)\n",
-           spectrum_name(t->state.spectrum), t->state.wind_speed_mps, t->state.fetch_km, t->hs_m,
-           rx + ry + t->mss_unresolved_x + t->mss_unresolved_y, rx + ry);
-    printf("  %d patterns (", t->patterns);
-    for (int i = 0; i < t->patterns; i++)
-        printf("%s%.1f m", i ? ", " : "", t->pattern[i].size_m);
-    printf("), %d frames over %.1f s, tables %dx%d / geometry %dx%d\n", t->frames,
-           t->loop_period_s, t->state.size_fs, t->state.size_fs, t->state.size_geo,
-           t->state.size_geo);
+           t.spectrum, t.wind_speed_mps, t.fetch_km, t.significant_height_m,
+           rx + ry + t.mss_unresolved[0] + t.mss_unresolved[1], rx + ry);
+    printf("  %d patterns (", t.patterns);
+    for (int i = 0; i < t.patterns; i++)
+        printf("%s%.1f m", i ? ", " : "", t.pattern_size_m[i]);
+    printf("), %d frames over %.1f s, tables %dx%d / geometry %dx%d\n", t.frames,
+           t.loop_period_s, t.table_size, t.table_size, t.geometry_size, t.geometry_size);
     printf("  whitecaps: epsilon %.4f on the summed k (breaking %.5f), foam recovers %.3g k/s; "
-           "foam fraction %.5f vs %.5f %s\n", t->whitecap_epsilon,
-           t->whitecap_breaking_fraction, t->foam_recovery_per_s,
-           t->whitecap_fraction_measured, t->whitecap_fraction_model,
-           whitecap_model_name(t->state.whitecap_model));
+           "foam fraction %.5f vs %.5f %s\n", t.whitecap_epsilon,
+           t.whitecap_breaking_fraction, t.foam_recovery_per_s,
+           t.whitecap_fraction_measured, t.whitecap_fraction_model, t.whitecap_model);
     printf("  memory: tables %llu bytes (held in RAM, streamed from; with the streamed part and a "
            "margin %llu); GPU at most %llu (any tier, geometry, quality); budget %llu\n",
-           (unsigned long long)tb, (unsigned long long)(tb + res),
-           (unsigned long long)budget_gpu_bytes(&t->state),
-           (unsigned long long)t->state.budget_bytes);
-    printf("  wrote %d tables to %s in %.2f s\n", t->count, dir, seconds);
+           (unsigned long long)t.table_bytes, (unsigned long long)(t.table_bytes + t.resident_bytes),
+           (unsigned long long)t.gpu_bytes_max, (unsigned long long)t.budget_bytes);
+    printf("  wrote %d tables to %s in %.2f s\n", t.tables, dir, seconds);
 }
 
-static void inspect_row(void *user, const struct tables_verify_entry *e)
+static void inspect_row(void *user, const swell_table_info *e, int listed, int status,
+                        const char *msg)
 {
     int *bad = user;
-    if (e->status)
+    if (status)
         (*bad)++;
-    printf("  %-18s %-9s %-6s %4dx%-4d layers %-3d levels %-2d %9llu B  %s%s%s\n", e->file,
-           e->listed ? table_kind_name(e->kind) : "?", e->listed ? table_format_name(e->format) : "?",
-           e->width, e->height, e->layers, e->levels, (unsigned long long)e->bytes,
-           e->status ? "BAD: " : "ok", e->status ? e->msg : "", e->listed ? "" : " (not in manifest)");
+    printf("  %-18s %-9s %-6s %4dx%-4d layers %-3d levels %-2d %9llu B  %s%s%s\n", e->name,
+           e->kind, e->format, e->width, e->height, e->layers, e->levels,
+           (unsigned long long)e->bytes, status ? "BAD: " : "ok", status ? msg : "",
+           listed ? "" : " (not in manifest)");
 }
 
 static int cmd_inspect(int argc, char **argv)
@@ -291,31 +310,21 @@ static int cmd_inspect(int argc, char **argv)
         return 2;
     }
     struct swell_err err = { 0 };
-    struct tables_manifest *m = calloc(1, sizeof *m);
-    if (!m) {
-        fprintf(stderr, "swell-bake: out of memory\n");
-        return 1;
-    }
+    swell_sea_info t;
     int bad = 0;
     printf("%s:\n", argv[2]);
-    int r = tables_verify_dir(argv[2], inspect_row, &bad, m, &err);
-    if (!r || bad) {
-        const struct swell_tables *t = &m->set;
-        uint64_t tb = 0;
-        for (int i = 0; i < t->count; i++)
-            tb += m->entry[i].file_bytes;
+    int r = swell_sea_check_dir(argv[2], inspect_row, &bad, &t, &err);
+    if (t.patterns > 0) {
         printf("  sea state: %s, U10 %.1f m/s towards %.0f deg, fetch %.0f km, depth %s, seed %u\n",
-               spectrum_name(t->state.spectrum), t->state.wind_speed_mps, t->state.wind_dir_deg,
-               t->state.fetch_km, t->state.depth_m > 0 ? "finite" : "deep", t->state.seed);
+               t.spectrum, t.wind_speed_mps, t.wind_dir_deg, t.fetch_km,
+               t.depth_m > 0 ? "finite" : "deep", t.seed);
         printf("  %d patterns, %d frames over %.1f s; Hs %.2f m; whitecaps %.5f (model %.5f)\n",
-               t->patterns, t->frames, t->loop_period_s, t->hs_m, t->whitecap_fraction_measured,
-               t->whitecap_fraction_model);
+               t.patterns, t.frames, t.loop_period_s, t.significant_height_m,
+               t.whitecap_fraction_measured, t.whitecap_fraction_model);
         printf("  memory: table files %llu bytes (held in RAM, streamed from); GPU at most %llu "
-               "(any tier, geometry, quality); budget %llu\n", (unsigned long long)tb,
-               (unsigned long long)budget_gpu_bytes(&t->state),
-               (unsigned long long)t->state.budget_bytes);
+               "(any tier, geometry, quality); budget %llu\n", (unsigned long long)t.table_bytes,
+               (unsigned long long)t.gpu_bytes_max, (unsigned long long)t.budget_bytes);
     }
-    free(m);
     if (r) {
         fprintf(stderr, "swell-bake: inspect %s: %s\n", argv[2], err.msg);
         return 1;
@@ -336,10 +345,12 @@ int main(int argc, char **argv)
 
     struct progress_state ps = { 0 };
     clock_gettime(CLOCK_MONOTONIC, &ps.start);
-    struct bake_opts bo = { .progress = (!o.quiet && isatty(2)) ? on_progress : NULL, .user = &ps };
-    struct swell_tables t;
+    swell_sea_desc d = { .options = o.sea,
+                         .progress = (!o.quiet && isatty(2)) ? on_progress : NULL,
+                         .progress_user = &ps };
+    swell_sea *sea = NULL;
     struct swell_err err = { 0 };
-    r = swell_bake(&o.state, &bo, &t, &err);
+    r = swell_sea_bake(&d, &sea, &err);
     if (ps.shown)
         fprintf(stderr, "\n");
     if (r) {
@@ -347,14 +358,14 @@ int main(int argc, char **argv)
         return r == SWELL_E_ARG ? 2 : 1;
     }
     double seconds = seconds_since(&ps.start);
-    if ((r = tables_save_dir(&t, o.out_dir, &err)) ||
-        (o.report && (r = write_report(o.report, &t, seconds, &err)))) {
+    if ((r = swell_sea_save(sea, o.out_dir, &err)) ||
+        (o.report && (r = write_report(o.report, sea, seconds, &err)))) {
         fprintf(stderr, "swell-bake: %s\n", err.msg);
-        tables_destroy(&t);
+        swell_sea_destroy(sea);
         return 1;
     }
     if (!o.quiet)
-        print_summary(&t, o.out_dir, seconds_since(&ps.start));
-    tables_destroy(&t);
+        print_summary(sea, o.out_dir, seconds_since(&ps.start));
+    swell_sea_destroy(sea);
     return 0;
 }

@@ -312,6 +312,14 @@ static int solve_whitecaps(const struct seastate *s, struct swell_tables *out,
     return 0;
 }
 
+int bake_check(const struct seastate *state, struct swell_err *err)
+{
+    struct seastate s = *state;
+    seastate_resolve(&s);
+    int r = seastate_validate(&s, err);
+    return r ? r : choose_sizes(&s, err);
+}
+
 int swell_bake(const struct seastate *state, const struct bake_opts *opts,
                struct swell_tables *out, struct swell_err *err)
 {

@@ -16,6 +16,8 @@ struct bake_opts {
 
 /* Resolve, validate, choose sizes for the budget (or refuse with SWELL_E_BUDGET saying what is
  * needed), bake every table. `out` is zeroed first; on failure it holds nothing. */
+/* swell_bake's checks alone, nothing baked: resolve, validate, the sizes for the budget. */
+int bake_check(const struct seastate *state, struct swell_err *err);
 int swell_bake(const struct seastate *state, const struct bake_opts *opts,
                struct swell_tables *out, struct swell_err *err);
 

@@ -2,7 +2,6 @@
 #include <stdio.h>
 #include <string.h>
 #include "core/args.h"
-#include "core/seastate.h"
 
 static int listed(const char *const *list, const char *name)
 {
@@ -33,7 +32,7 @@ int args_next(struct args *a, const char **name, const char **value)
     *name = arg;
     if (listed(a->flags, arg))
         return ARGS_OPTION;
-    if (!listed(a->valued, arg) && !(a->sea_options && seastate_option(arg))) {
+    if (!listed(a->valued, arg) && !(a->valued_too && a->valued_too(arg))) {
         fprintf(stderr, "%s: unknown option '%s' (see --help)\n", a->prog, arg);
         return ARGS_ERROR;
     }

@@ -1,7 +1,8 @@
 /* args.h - the command line of both programs (swell, swell-bake): "--name" options with or
  * without a value, --help/-h and --version. Every error is printed as "prog: ... (see --help)"
  * for the caller to exit 2: an argument that is not an option, an unknown option, a missing
- * value. The values themselves are checked by core/parse.h and core/seastate.h.
+ * value. The values themselves are checked by core/parse.h and core/seastate.h. Needs nothing
+ * else of the library: swell-bake links it beside the public libswell.a.
  */
 #ifndef SWELL_ARGS_H
 #define SWELL_ARGS_H
@@ -15,7 +16,8 @@ struct args {
     int i;                              /* next argument; start at 1 */
     const char *const *flags;           /* options without a value, NULL-terminated */
     const char *const *valued;          /* options with a value, NULL-terminated */
-    int sea_options;                    /* 1: every option of seastate_fields takes a value */
+    int (*valued_too)(const char *name);  /* NULL, or 1 for further options that take a value
+                                         * (swell-bake: the sea state's, swell_sea_option) */
     void (*usage)(FILE *out);           /* --help's text */
     const char *version;                /* --version's line */
 };

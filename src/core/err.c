@@ -1,8 +1,5 @@
+/* err.c - the public error names and version (swell.h); filling an error is fail.c's. */
 #include "core/err.h"
-
-#include <stdarg.h>
-#include <stdio.h>
-#include <string.h>
 
 static const char *const err_names[SWELL_ERR_COUNT] = {
     [SWELL_OK] = "success", [SWELL_E_NOMEM] = "out of memory",
@@ -25,49 +22,4 @@ const char *swell_err_name(int code)
 uint32_t swell_version(void)
 {
     return SWELL_VERSION_NUMBER;
-}
-
-int swell_fail(struct swell_err *e, int code, const char *fmt, ...)
-{
-    if (!e)
-        return code;
-    e->code = code;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(e->msg, sizeof e->msg, fmt, ap);
-    va_end(ap);
-    return code;
-}
-
-int swell_err_context(struct swell_err *e, const char *fmt, ...)
-{
-    if (!e)
-        return SWELL_E_ARG;
-    char buf[sizeof e->msg];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(buf, sizeof buf - 2, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        n = 0;
-    if ((size_t)n > sizeof buf - 3)
-        n = (int)(sizeof buf - 3);
-    buf[n++] = ':';
-    buf[n++] = ' ';
-    size_t room = sizeof buf - (size_t)n - 1;
-    size_t old_len = strnlen(e->msg, sizeof e->msg);
-    if (old_len > room)
-        old_len = room;
-    memcpy(buf + n, e->msg, old_len);
-    buf[(size_t)n + old_len] = '\0';
-    memcpy(e->msg, buf, sizeof buf);
-    return e->code;
-}
-
-void swell_err_clear(struct swell_err *e)
-{
-    if (e) {
-        e->code = SWELL_OK;
-        e->msg[0] = '\0';
-    }
 }
