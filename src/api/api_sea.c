@@ -49,11 +49,12 @@ static int desc_state(const swell_sea_desc *d, struct seastate *s, struct swell_
     return SWELL_OK;
 }
 
+/* what a NULL descriptor asks for: every default */
+static const swell_sea_desc zero_desc;
+
 int swell_sea_bake(const swell_sea_desc *desc, swell_sea **out, struct swell_err *err)
 {
-    swell_sea_desc d0;
-    memset(&d0, 0, sizeof d0);
-    const swell_sea_desc *d = desc ? desc : &d0;
+    const swell_sea_desc *d = desc ? desc : &zero_desc;
     if (!out)
         return swell_fail(err, SWELL_E_ARG, "swell_sea_bake: out is NULL");
     *out = NULL;
@@ -76,10 +77,8 @@ int swell_sea_bake(const swell_sea_desc *desc, swell_sea **out, struct swell_err
 
 int swell_sea_check(const swell_sea_desc *desc, struct swell_err *err)
 {
-    swell_sea_desc d0;
-    memset(&d0, 0, sizeof d0);
     struct seastate s;
-    int rc = desc_state(desc ? desc : &d0, &s, err);
+    int rc = desc_state(desc ? desc : &zero_desc, &s, err);
     return rc ? rc : bake_check(&s, err);
 }
 
