@@ -78,12 +78,17 @@ float fresnel_eff(float f, float sig)
 }
 
 // Stereographic sky-map coordinates of a direction (Bruneton 2010 §5.2): zenith at the centre,
-// horizon on the inscribed circle. Directions below the horizon use the horizon.
+// horizon on the circle of radius SKY_HORIZON of the half-width (sky.h SKY_MAP_HORIZON), the
+// ring outside it the radiance below the horizon (Bruneton §6's multiple reflections). A
+// direction below the horizon is read at the ring's middle: z raised to SKY_BELOW_Z (sky.h
+// SKY_MAP_BELOW_Z), which also keeps the coordinates within the map.
+#define SKY_HORIZON 0.9375
+#define SKY_BELOW_Z -0.0328
 vec2 sky_map_uv(vec3 r)
 {
-    r.z = max(r.z, 0.0);
+    r.z = max(r.z, SKY_BELOW_Z);
     r = normalize(r);
-    return vec2(0.5) + 0.5 * r.xy / (1.0 + r.z);
+    return vec2(0.5) + (0.5 * SKY_HORIZON) * r.xy / (1.0 + r.z);
 }
 
 // The Rayleigh and Mie phase functions at the cosine cg of the angle to the sun (Mie by

@@ -319,11 +319,12 @@ vec3 sky_run(vec2 uv)
 vec3 sky_eq27(vec2 uv, float sigma)
 {
 #ifndef SWELL_RUN_LOD
-    // log2(2 sigma size du/dzeta) with du/dzeta = 1 / (1 + r_z) of the reflected ray r at the
-    // vertex's mean slope, read off its stereographic uv (common.glsl sky_map_uv): with d = uv
-    // - 1/2, 4 |d|^2 = (1 - r_z) / (1 + r_z), so 2 / (1 + r_z) = 1 + 4 |d|^2
+    // log2(2 sigma size du/dzeta) with du/dzeta = h / (1 + r_z) of the reflected ray r at the
+    // vertex's mean slope, read off its stereographic uv (common.glsl sky_map_uv, h its
+    // SKY_HORIZON): with d = uv - 1/2, 4 |d|^2 / h^2 = (1 - r_z) / (1 + r_z), so 2 h / (1 + r_z)
+    // = h + 4 |d|^2 / h
     vec2 dq = v_lin.zw - vec2(0.5);
-    float foot = log2(sigma * (1.0 + 4.0 * dot(dq, dq)) / sky_map_inv_size);
+    float foot = log2(sigma * (SKY_HORIZON + (4.0 / SKY_HORIZON) * dot(dq, dq)) / sky_map_inv_size);
 #endif
 #if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint as the renderer takes
@@ -381,7 +382,8 @@ vec3 display_to_radiance(vec3 c)
 // Local reflections (Bruneton 2010 §6, Hu 2006 §5.2): the objects' reflection map read along
 // the pixel's reflected ray, filtered as eq. 27 filters the sky (reflect.c). The ray comes back
 // from its stereographic sky-map uv (common.glsl sky_map_uv inverted up to its length: with
-// d = 2 uv - 1, r ~ (2 d, 1 - d.d)), which already carries the pixel's slope. The map holds
+// d = (2 uv - 1) / h, h its SKY_HORIZON, r ~ (2 d, 1 - d.d)), which already carries the pixel's
+// slope. The map holds
 // display colours (the application's), premultiplied: they are taken back to radiance by
 // inverting tone_map, so a mirror (F = 1) would show an object as the application drew it.
 // Version (l, m) of the reflection map: level l halved m more times along the map's vertical,
@@ -401,7 +403,7 @@ vec4 refl_level(float x, float yv, float s, float st, float up)
 
 vec4 reflect_local(vec2 sky_uv, vec2 sig)
 {
-    vec2 d = 2.0 * sky_uv - vec2(1.0);
+    vec2 d = (2.0 / SKY_HORIZON) * sky_uv - vec2(1.0 / SKY_HORIZON);
     vec3 q = refl_mat * vec3(2.0 * d, 1.0 - dot(d, d));
     // Parallax (reflect.c): the objects stand D_o away; the flat sea here is D = c /
     // sin(depression) away (the fragment's view ray). A ray the waves tilt by an angle meets

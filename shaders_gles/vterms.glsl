@@ -77,7 +77,8 @@ void vertex_terms(vec3 p, vec2 rest, vec2 s_cpu, vec2 svar, out vec4 lin, out ve
     float shadow = 1.0 + lam.x + lam.y;
     float ross = cos_l > 0.0 ? fs / (8.0 * PI * hn * hn * hn * hn * cos_v * shadow) : 0.0;
     sun = vec4(-hv.xy / max(hv.z, 0.05) - s0, ross, wx);
-    // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z)
+    // eq. 27's footprint in texels is 2 sigma size du/dzeta, du/dzeta = h / (1 + r_z) (h the
+    // horizon's radius on the map, common.glsl SKY_HORIZON)
     vec3 r = reflect(-v, n);
     // aerial perspective from the sky model (sky.h sky_haze): the path of length |p| to the
     // camera has air mass |p| (1 - e^{-h/H}) / h through the exponential atmosphere,
@@ -92,7 +93,7 @@ void vertex_terms(vec3 p, vec2 rest, vec2 s_cpu, vec2 svar, out vec4 lin, out ve
     // as the renderer takes it per row (renderer.c row_footprint); ocean.frag fades each
     // pattern by it where the renderer stops fetching it, and matches its run's level to it.
     geo = vec3(log2(dot(rest, rest) + lod_frame.x) + lod_frame.y,
-               log2(2.0 * sky_map_size / (1.0 + max(r.z, 0.0))), t.g);
+               log2((2.0 * SKY_HORIZON) * sky_map_size / (1.0 + max(r.z, 0.0))), t.g);
     float cg = dot(p.xy / max(length(p.xy), 1e-6), sun_dir_world.xy);
 #ifdef QUALITY_HIGH
     fog = vec3(haze_phases(cg, haze_frame.y), 0.0);

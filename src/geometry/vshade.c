@@ -6,6 +6,7 @@
 #include <string.h>
 #include "core/camera.h"
 #include "geometry/grid.h"
+#include "optics/sky.h"
 
 #define PI_F 3.14159265f
 
@@ -49,14 +50,15 @@ static void facing_normal(const float *v, const float *s, float *n)
 }
 
 /* common.glsl sky_map_uv: the stereographic sky-map coordinates of direction r (Bruneton
- * §5.2), the horizon for directions below it. */
+ * §5.2), the horizon on the circle of radius SKY_MAP_HORIZON; directions below it read at the
+ * ring's middle (sky.h). */
 static void sky_map_uv(const float *rin, float *uv)
 {
-    float r[3] = { rin[0], rin[1], maxf(rin[2], 0.0f) };
-    if (rin[2] < 0.0f)   /* else r is the unit reflected ray already */
+    float r[3] = { rin[0], rin[1], maxf(rin[2], SKY_MAP_BELOW_Z) };
+    if (rin[2] < SKY_MAP_BELOW_Z)   /* else r is the unit reflected ray already */
         normalize3(r);
-    uv[0] = 0.5f + 0.5f * r[0] / (1.0f + r[2]);
-    uv[1] = 0.5f + 0.5f * r[1] / (1.0f + r[2]);
+    uv[0] = 0.5f + 0.5f * SKY_MAP_HORIZON * r[0] / (1.0f + r[2]);
+    uv[1] = 0.5f + 0.5f * SKY_MAP_HORIZON * r[1] / (1.0f + r[2]);
 }
 
 /* ocean.vert lookups: the Fresnel-texture uv of view v bumped by slope s (Hu §5.1; fresnel.h's
@@ -144,7 +146,8 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
     o[VSHADE_SUN + 2] = cos_l > 0.0f ? fs / (8.0f * PI_F * hn * hn * hn * hn * cos_v * shadow)
                                      : 0.0f;
     o[VSHADE_SUN + 3] = wx;
-    /* eq. 27's footprint in texels, 2 sigma size du/dzeta, du/dzeta = 1 / (1 + r_z) */
+    /* eq. 27's footprint in texels, 2 sigma size du/dzeta, du/dzeta = h / (1 + r_z) (h the
+     * horizon's radius on the map, sky.h) */
     float rz = 2.0f * dot3(n, v) * n[2] - v[2];
     float plen = sqrtf(dot3(p, p)), m = plen * f->haze_frame[0];
     float t[3] = { 0.0f, expf(-f->haze_tau[1] * m), 0.0f };   /* green's; the others for fog */
@@ -156,7 +159,7 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
     o[VSHADE_REST + 3] = svar[1];
     o[VSHADE_GEO + 0] = gv[GRID_A_K];
     o[VSHADE_GEO + 1] = gv[GRID_A_K + 1];
-    o[VSHADE_GEO + 2] = log2f(2.0f * f->sky_map_size / (1.0f + maxf(rz, 0.0f)));
+    o[VSHADE_GEO + 2] = log2f(2.0f * SKY_MAP_HORIZON * f->sky_map_size / (1.0f + maxf(rz, 0.0f)));
     o[VSHADE_GEO + 3] = t[1];
     o[VSHADE_FOG + 3] = 0.0f;
     /* aerial perspective (vterms.glsl): (1 - T) times the horizon sky of the view's azimuth */

@@ -25,7 +25,7 @@
  *   pos   displaced position xyz, m; w: log2 of the pixel footprint at the rest point, m
  *   rest  rest position on the sea plane xy, m; the CPU patterns' resolved slope variance xy
  *   geo   the CPU patterns' foam memory mean and variance (Dupuy eq. 7-8); the sky map's eq. 27
- *         LOD offset log2(2 size / (1 + r_z)); the haze's green transmittance
+ *         LOD offset log2(2 h size / (1 + r_z)); the haze's green transmittance
  *   lin   Fresnel-texture uv and sky-map uv at s0; lin_dx, lin_dy: their derivatives in s
  *   sun   zeta_h - s0 (xy), the Ross factor, eq. 25's x weight
  *   fog   low quality: the in-scattered light of the path to the camera, rgb; high: the

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "tables/quantize.h"
+#include "optics/fresnel.h"
 #include "optics/sky.h"
 
 static const float tau_r[3] = { 0.0464f, 0.108f, 0.265f };
@@ -56,7 +57,11 @@ static void scatter_gains(const struct sky *s, float m_v, float ray[3], float mi
 
 void sky_radiance(const struct sky *s, const float dir[3], float rgb[3])
 {
-    float z = dir[2] > 0.0f ? dir[2] : 0.0f;
+    if (dir[2] < 0.0f) {   /* multiple reflections (sky.h) */
+        memcpy(rgb, s->below, sizeof(s->below));
+        return;
+    }
+    float z = dir[2];
     float h = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + z * z);
     float v[3] = { dir[0] / h, dir[1] / h, z / h };
     float cg = v[0] * s->sun_dir[0] + v[1] * s->sun_dir[1] + v[2] * s->sun_dir[2];
@@ -139,6 +144,17 @@ void sky_haze(const struct sky *s, struct sky_haze *out)
     out->scale_height_m = (float)SCALE_HEIGHT_M;
 }
 
+double sky_fresnel_avg(void)
+{
+    /* midpoint rule in mu^2 (the integrand F(mu) d(mu^2)): 512 steps, the grazing end (F -> 1)
+     * resolved; within 1e-5 of the converged value */
+    const int n = 512;
+    double sum = 0.0;
+    for (int k = 0; k < n; k++)
+        sum += fresnel_exact(sqrt((k + 0.5) / n), SWELL_WATER_IOR);
+    return sum / n;
+}
+
 size_t sky_level_offset(const struct sky *s, int level)
 {
     size_t off = 0;
@@ -189,34 +205,37 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
         sky_destroy(out);
         return swell_fail(err, SWELL_E_NOMEM, "sky: no memory for a %d^2 sky map", size);
     }
-    /* Inverse stereographic projection of each texel centre; outside the horizon circle the
-     * horizon radiance of the same azimuth (only reached by filtering and grazing lookups). */
+    /* Inverse stereographic projection of each texel centre inside the horizon circle (map
+     * coordinates x, y over SKY_MAP_HORIZON), and the sky irradiance on a horizontal plane: L
+     * cos(theta) over the hemisphere in the map's own measure, d omega = 4 / (1 + r^2)^2 dx dy
+     * for the stereographic projection (dx dy the texel's area in those coordinates). Then the
+     * ring outside the circle: the radiance below the horizon (sky.h). */
+    const float hs = SKY_MAP_HORIZON;
     for (int j = 0; j < size; j++)
         for (int i = 0; i < size; i++) {
-            float x = 2.0f * (i + 0.5f) / size - 1.0f, y = 2.0f * (j + 0.5f) / size - 1.0f;
-            float r2 = x * x + y * y, dir[3];
-            if (r2 > 1.0f) {
-                float r = sqrtf(r2);
-                x /= r;
-                y /= r;
-                r2 = 1.0f;
-            }
+            float x = (2.0f * (i + 0.5f) / size - 1.0f) / hs, y = (2.0f * (j + 0.5f) / size - 1.0f) / hs;
+            float r2 = x * x + y * y, dir[3], *px = lin + 3 * ((size_t)j * size + i);
+            if (r2 >= 1.0f)
+                continue;
             dir[0] = 2.0f * x / (1.0f + r2);
             dir[1] = 2.0f * y / (1.0f + r2);
             dir[2] = (1.0f - r2) / (1.0f + r2);
-            sky_radiance(out, dir, lin + 3 * ((size_t)j * size + i));
+            sky_radiance(out, dir, px);
+            float dA = 4.0f / ((float)size * size * hs * hs);
+            float dw = 4.0f / ((1.0f + r2) * (1.0f + r2)) * dA;
+            for (int c = 0; c < 3; c++)
+                out->sky_irr[c] += px[c] * dir[2] * dw;
         }
-    /* Sky irradiance on a horizontal plane: integrate L cos(theta) over the hemisphere in the
-     * map's own measure, d omega = 4 / (1 + r^2)^2 dx dy for the stereographic projection. */
+    {
+        float f_avg = (float)sky_fresnel_avg();
+        for (int c = 0; c < 3; c++)
+            out->below[c] = f_avg * out->sky_irr[c] / (float)M_PI;
+    }
     for (int j = 0; j < size; j++)
         for (int i = 0; i < size; i++) {
-            float x = 2.0f * (i + 0.5f) / size - 1.0f, y = 2.0f * (j + 0.5f) / size - 1.0f;
-            float r2 = x * x + y * y, dA = 4.0f / ((float)size * size);
-            if (r2 >= 1.0f)
-                continue;
-            float cos_t = (1.0f - r2) / (1.0f + r2), dw = 4.0f / ((1.0f + r2) * (1.0f + r2)) * dA;
-            for (int c = 0; c < 3; c++)
-                out->sky_irr[c] += lin[3 * ((size_t)j * size + i) + c] * cos_t * dw;
+            float x = (2.0f * (i + 0.5f) / size - 1.0f) / hs, y = (2.0f * (j + 0.5f) / size - 1.0f) / hs;
+            if (x * x + y * y >= 1.0f)
+                memcpy(lin + 3 * ((size_t)j * size + i), out->below, sizeof(out->below));
         }
     for (size_t k = 0; k < 3 * (size_t)size * size; k++)
         maxv = fmaxf(maxv, lin[k]);

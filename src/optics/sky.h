@@ -1,6 +1,13 @@
 /* sky.h - an analytic, sun-dependent clear sky, baked into the stereographic sky map of
- * Bruneton 2010 §5.2 (u = 1/2 + 1/2 [r_x r_y] / (1 + r_z): zenith at the centre, horizon on the
- * inscribed circle) with a full mip chain for the filtered lookup of eq. 27.
+ * Bruneton 2010 §5.2 (u = 1/2 + h/2 [r_x r_y] / (1 + r_z): zenith at the centre, horizon on the
+ * circle of radius h = SKY_MAP_HORIZON of the half-width) with a full mip chain for the filtered
+ * lookup of eq. 27. The ring outside the horizon holds the radiance below it (Bruneton 2010 §6,
+ * multiple reflections: a view ray reflected below the horizon meets another wave and is
+ * reflected towards the sky or refracted into the water; its radiance is approximated as an
+ * average Fresnel reflectance times the sky irradiance, F_avg E_sky / pi, F_avg the flat
+ * water's reflectance averaged over a uniform sky, 0.066 at n = 1.333). Lookups below the
+ * horizon read the ring's middle, and filtering blends it with the horizon where a lobe of
+ * reflected rays straddles it.
  *
  * Model (why: cheap, no tables, physically motivated): single scattering in a flat homogeneous
  * atmosphere of Rayleigh optical depth tau_R = (0.046, 0.108, 0.265) (680/550/440 nm, 8 km scale
@@ -21,6 +28,14 @@
 #include <stdint.h>
 #include "core/err.h"
 
+/* The horizon circle's radius in units of the map's half-width; the ring outside it, 8 texels
+ * wide at level 0 of a 256^2 map, holds the radiance below the horizon. common.glsl
+ * SKY_HORIZON is the same number (test_glsl test_sky_lookup reads the map through it). */
+#define SKY_MAP_HORIZON 0.9375f
+/* The lowest z of a reflected ray the lookups take (common.glsl sky_map_uv): normalised, its
+ * map radius h tan(theta / 2) is the ring's middle (1 + h) / 2. */
+#define SKY_MAP_BELOW_Z (-0.0328f)
+
 /* A of level l of the RGBA8 sky map (up to 9 levels, 256^2) */
 #define SKY_LEVEL_ALPHA 28
 
@@ -28,6 +43,8 @@ struct sky {
     float sun_dir[3];       /* unit vector towards the sun, world */
     float sun_irr[3];       /* sun irradiance at the sea (normal incidence), relative to E0 */
     float sky_irr[3];       /* sky irradiance on a horizontal surface, relative to E0 */
+    float below[3];         /* radiance below the horizon, F_avg sky_irr / pi (multiple
+                             * reflections, above) */
     float map_scale;        /* texel value v / 255 * map_scale = radiance, per channel */
     int size, levels;       /* sky map: size x size, full mip chain */
     uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed; A holds
@@ -75,12 +92,17 @@ void sky_ozone_transmittance(float elev_rad, float out[3]);
 /* exp(-tau_c m) per channel: the transmittance of air mass m (sky_view_air_mass). */
 void sky_transmittance(float m, float out[3]);
 
-/* Sky radiance towards unit direction dir (z up); below the horizon the horizon's. */
+/* Sky radiance towards unit direction dir (z up); below the horizon s->below (set by sky_bake;
+ * multiple reflections, above). */
 void sky_radiance(const struct sky *s, const float dir[3], float rgb[3]);
 
 /* Bake for a sun at elev_deg (may be negative: no sun term then) / azim_deg (CCW from +x). */
 int  sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct swell_err *err);
 void sky_destroy(struct sky *s);
+
+/* The unpolarised Fresnel reflectance of flat water averaged over a uniform sky:
+ * 2 int_0^1 F(mu) mu dmu (hemispherical-directional, cosine-weighted). */
+double sky_fresnel_avg(void);
 
 /* Byte offset of a mip level in data. */
 size_t sky_level_offset(const struct sky *s, int level);

@@ -65,11 +65,11 @@ uint32_t run_lod_key(const struct renderer *r, float foot, int k, int kw)
 
 /* Eq. 27's sky footprint (log2 texels) at footprint f (log2 m, ocean.frag V_FOOT) of a row at
  * squared distance d2 seen from altitude alt, fetching k slots: 2 sigma size du/dzeta with
- * du/dzeta = 1 / (1 + r_z), as ocean.vert and ocean.frag take it per pixel, here with sigma^2
- * the unresolved variance, the top variance of the slots not fetched and each fetched slot's
- * mean within-texel variance at the level f asks (between whole levels geometric: continuous
- * in f, so neighbouring runs agree where they meet; the larger of x and y, as the shader);
- * r_z the reflected view's on a flat sea. */
+ * du/dzeta = h / (1 + r_z) (h = SKY_MAP_HORIZON, sky.h), as ocean.vert and ocean.frag take it
+ * per pixel, here with sigma^2 the unresolved variance, the top variance of the slots not
+ * fetched and each fetched slot's mean within-texel variance at the level f asks (between
+ * whole levels geometric: continuous in f, so neighbouring runs agree where they meet; the
+ * larger of x and y, as the shader); r_z the reflected view's on a flat sea. */
 static float sky_run_foot(const struct renderer *r, int k, float f, float d2, float alt)
 {
     float var[2] = { r->t->mss_unresolved_x, r->t->mss_unresolved_y };
@@ -89,7 +89,7 @@ static float sky_run_foot(const struct renderer *r, int k, float f, float d2, fl
     }
     float rz = alt / sqrtf(d2 + alt * alt);
     return 0.5f * log2f(fmaxf(fmaxf(var[0], var[1]), 1e-4f)) +
-           log2f(2.0f * (float)r->sky.size / (1.0f + rz));
+           log2f(2.0f * SKY_MAP_HORIZON * (float)r->sky.size / (1.0f + rz));
 }
 
 /* The levels of a run from its key, bound as textures, and the sky map's two levels

@@ -841,13 +841,15 @@ static void test_horizon_row(void **state)
  * 4.07 and 9.23 with the tone map on the largest channel (common.glsl tone_map), whose
  * brighter, more saturated sky shows a sky sharper by the limit more; 5.06 and 10.78 with
  * JONSWAP scaled to the fetch law (spectrum.c), whose larger unresolved variance asks eq. 27
- * for wider filters, so more of them beyond the limits. */
+ * for wider filters, so more of them beyond the limits; 7.08 and 12.33 with the sky below
+ * the horizon (Bruneton §6's multiple reflections, sky.h; 5.51 and 11.73 just before): the dark
+ * ring next to the horizon shows a filter short of eq. 27's more. */
 static void test_bias_limit(void **state)
 {
     struct camera c;
     int best;
     float device;
-    const float limits[3] = { 16.0f, 4.0f, 2.0f }, bound[3] = { 0.0f, 6.0f, 12.0f };
+    const float limits[3] = { 16.0f, 4.0f, 2.0f }, bound[3] = { 0.0f, 8.0f, 13.0f };
     (void)state;
     int y0 = horizon_row_scene(&c, &best, &device);
     assert_true(device >= 16.0f);   /* llvmpipe's: the limits below are the shader's own */
@@ -856,6 +858,9 @@ static void test_bias_limit(void **state)
         render(TIER_GLES2_MIN, QUALITY_HIGH, GEOMETRY_GRID, HORIZON_ROW_SUN, c.heading_deg, &c,
                3.0, fx.img, NULL);
         double row = rmse_rows(fx.img, fx.img2, y0, y0 + 8);
+        char what[32];
+        snprintf(what, sizeof(what), "bias_limit_%.0f", limits[i]);
+        dump(fx.img, what);
         if (i == 0)
             memcpy(fx.img3, fx.img, (size_t)W * H * 4);
         double all = rmse_rgb(fx.img, fx.img3);
@@ -1270,7 +1275,10 @@ static void test_foam_amount(void **state)
 }
 
 /* One view of test_quality_match: low and high quality at gles2-min, every 8 rows' mean
- * luminance within bound of each other. */
+ * luminance within bound of each other. The bound is 5 % but at 15 m/s from the surface: there
+ * low draws about a quarter more foam in the nearest rows than high (low's eq. 6 per vertex,
+ * high's per pixel; the cause is not found, issue 14), 9.3 %, and 10.1-10.3 % since the sky
+ * below the horizon (sky.h) darkened the sea around the same foam: held at 11 %. */
 static void low_vs_high(const struct camera *cam, float sun_elev, float sun_azim,
                         const char *what, double bound)
 {
@@ -1307,7 +1315,7 @@ static void test_quality_match(void **state)
             for (int c = 0; c < 3; c++) {
                 g_pixel_lod = lod;
                 snprintf(what, sizeof(what), "%.0f m/s, %s", (double)winds[w], names[c]);
-                low_vs_high(&cams[c], 30.0f, 100.0f, what, w == 1 && c == 0 ? 0.10 : 0.05);
+                low_vs_high(&cams[c], 30.0f, 100.0f, what, w == 1 && c == 0 ? 0.11 : 0.05);
             }
         /* towards a low sun (5 deg, the glitter down the middle), per-pixel LOD */
         g_pixel_lod = 1;

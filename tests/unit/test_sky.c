@@ -147,12 +147,59 @@ static void test_view_from_altitude(void **state)
     sky_destroy(&sk);
 }
 
+/* Multiple reflections (Bruneton 2010 §6, sky.h): below the horizon the sky is the average
+ * Fresnel reflectance times the sky irradiance over pi. The average is flat water's under a
+ * uniform sky, 2 int F(mu) mu dmu: 0.066 at n = 1.333 (Fresnel's formulas integrated; the
+ * diffuse reflectance quoted for a calm sea is 6.6 %); the map's ring outside the horizon
+ * circle holds that radiance (8-bit steps), inside the circle's edge the horizon's; and the
+ * lookup's constants keep a ray below the horizon in the ring's middle, within the map. */
+static void test_below_horizon(void **state)
+{
+    struct sky s;
+    struct swell_err err;
+    (void)state;
+    double f = sky_fresnel_avg();
+    print_message("average Fresnel reflectance %.4f\n", f);
+    assert_true(fabs(f - 0.066) < 0.001);
+    assert_int_equal(sky_bake(20.0f, 40.0f, 256, &s, &err), 0);
+    for (int c = 0; c < 3; c++) {
+        float want = (float)f * s.sky_irr[c] / (float)M_PI, got[3];
+        assert_true(s.sky_irr[c] > 0.0f);
+        assert_true(fabsf(s.below[c] - want) < 1e-6f * want + 1e-9f);
+        const float down[3] = { 0.3f, -0.2f, -0.5f }, grazing[3] = { 0.0f, 1.0f, -1e-4f };
+        sky_radiance(&s, down, got);
+        assert_true(got[c] == s.below[c]);
+        sky_radiance(&s, grazing, got);
+        assert_true(got[c] == s.below[c]);
+    }
+    /* level 0: a texel in the ring (a corner, and the middle of an edge) and one just inside
+     * the circle on the same axis */
+    const int n = s.size, edge = (int)(0.5f * n * (1.0f + SKY_MAP_HORIZON)) + 2;
+    const int inside = (int)(0.5f * n * (1.0f + SKY_MAP_HORIZON)) - 2;
+    const int at[3] = { 0, edge, inside };
+    for (int k = 0; k < 3; k++) {
+        const uint8_t *p = s.data + 4 * ((size_t)(k == 0 ? 0 : n / 2) * n + at[k]);
+        for (int c = 0; c < 3; c++) {
+            float v = p[c] / 255.0f * s.map_scale;
+            if (k < 2)
+                assert_true(fabsf(v - s.below[c]) <= 0.5f / 255.0f * s.map_scale + 1e-7f);
+            else
+                assert_true(v > 4.0f * s.below[c]);   /* the horizon sky, several times brighter */
+        }
+    }
+    /* the lookup's lowest z lands in the ring's middle: radius h tan(theta / 2) */
+    double th = acos(SKY_MAP_BELOW_Z), r = SKY_MAP_HORIZON * tan(0.5 * th);
+    assert_true(fabs(r - 0.5 * (1.0 + SKY_MAP_HORIZON)) < 1e-3);
+    sky_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_level_alpha),
         cmocka_unit_test(test_haze_horizon),
         cmocka_unit_test(test_view_from_altitude),
+        cmocka_unit_test(test_below_horizon),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
