@@ -49,18 +49,6 @@ static void facing_normal(const float *v, const float *s, float *n)
     normalize3(n);
 }
 
-/* common.glsl sky_map_uv: the stereographic sky-map coordinates of direction r (Bruneton
- * §5.2), the horizon on the circle of radius SKY_MAP_HORIZON; directions below it read at the
- * ring's middle (sky.h). */
-static void sky_map_uv(const float *rin, float *uv)
-{
-    float r[3] = { rin[0], rin[1], maxf(rin[2], SKY_MAP_BELOW_Z) };
-    if (rin[2] < SKY_MAP_BELOW_Z)   /* else r is the unit reflected ray already */
-        normalize3(r);
-    uv[0] = 0.5f + 0.5f * SKY_MAP_HORIZON * r[0] / (1.0f + r[2]);
-    uv[1] = 0.5f + 0.5f * SKY_MAP_HORIZON * r[1] / (1.0f + r[2]);
-}
-
 /* ocean.vert lookups: the Fresnel-texture uv of view v bumped by slope s (Hu §5.1; fresnel.h's
  * radius 1 - sqrt(1 - theta / (pi / 2)), theta = asin rho) and the sky-map uv of the reflected
  * ray; n: the facing normal (shade_one reuses the one at s0). */

@@ -144,6 +144,19 @@ void sky_haze(const struct sky *s, struct sky_haze *out)
     out->scale_height_m = (float)SCALE_HEIGHT_M;
 }
 
+void sky_map_uv(const float rin[3], float uv[2])
+{
+    float r[3] = { rin[0], rin[1], rin[2] > SKY_MAP_BELOW_Z ? rin[2] : SKY_MAP_BELOW_Z };
+    if (rin[2] < SKY_MAP_BELOW_Z) {   /* else r is a unit vector already */
+        float k = 1.0f / sqrtf(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        r[0] *= k;
+        r[1] *= k;
+        r[2] *= k;
+    }
+    uv[0] = 0.5f + 0.5f * SKY_MAP_HORIZON * r[0] / (1.0f + r[2]);
+    uv[1] = 0.5f + 0.5f * SKY_MAP_HORIZON * r[1] / (1.0f + r[2]);
+}
+
 double sky_fresnel_avg(void)
 {
     /* midpoint rule in mu^2 (the integrand F(mu) d(mu^2)): 512 steps, the grazing end (F -> 1)

@@ -92,6 +92,10 @@ void sky_ozone_transmittance(float elev_rad, float out[3]);
 /* exp(-tau_c m) per channel: the transmittance of air mass m (sky_view_air_mass). */
 void sky_transmittance(float m, float out[3]);
 
+/* common.glsl sky_map_uv: the map coordinates of unit direction r; below SKY_MAP_BELOW_Z its z
+ * is raised to it (the ring's middle). */
+void sky_map_uv(const float r[3], float uv[2]);
+
 /* Sky radiance towards unit direction dir (z up); below the horizon s->below (set by sky_bake;
  * multiple reflections, above). */
 void sky_radiance(const struct sky *s, const float dir[3], float rgb[3]);
