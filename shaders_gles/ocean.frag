@@ -324,7 +324,8 @@ vec3 sky_eq27(vec2 uv, float sigma)
     // SKY_HORIZON): with d = uv - 1/2, 4 |d|^2 / h^2 = (1 - r_z) / (1 + r_z), so 2 h / (1 + r_z)
     // = h + 4 |d|^2 / h
     vec2 dq = v_lin.zw - vec2(0.5);
-    float foot = log2(sigma * (SKY_HORIZON + (4.0 / SKY_HORIZON) * dot(dq, dq)) / sky_map_inv_size);
+    float foot = log2(sigma * (SKY_HORIZON + (4.0 / SKY_HORIZON) * dot(dq, dq)) /
+                      sky_map_inv_size);
 #endif
 #if defined(SWELL_RUN_LOD)
     // Software rasterisers (gpu.c prefer_run_lod): eq. 27's footprint as the renderer takes
@@ -383,9 +384,9 @@ vec3 display_to_radiance(vec3 c)
 // the pixel's reflected ray, filtered as eq. 27 filters the sky (reflect.c). The ray comes back
 // from its stereographic sky-map uv (common.glsl sky_map_uv inverted up to its length: with
 // d = (2 uv - 1) / h, h its SKY_HORIZON, r ~ (2 d, 1 - d.d)), which already carries the pixel's
-// slope. The map holds
-// display colours (the application's), premultiplied: they are taken back to radiance by
-// inverting tone_map, so a mirror (F = 1) would show an object as the application drew it.
+// slope. The map holds display colours (the application's), premultiplied: they are taken back
+// to radiance by inverting tone_map, so a mirror (F = 1) would show an object as the
+// application drew it.
 // Version (l, m) of the reflection map: level l halved m more times along the map's vertical,
 // in the atlas (reflect.c's layout: level l's column at x 0 or 1 - 2^(1 - l), y 0 or 2/3,
 // version m 2/3 (2^-l - 2^-(l+m)) above it; the atlas is three heights tall). For s = 2^-l,

@@ -147,7 +147,8 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
     o[VSHADE_REST + 3] = svar[1];
     o[VSHADE_GEO + 0] = gv[GRID_A_K];
     o[VSHADE_GEO + 1] = gv[GRID_A_K + 1];
-    o[VSHADE_GEO + 2] = log2f(2.0f * SKY_MAP_HORIZON * f->sky_map_size / (1.0f + maxf(rz, 0.0f)));
+    o[VSHADE_GEO + 2] = log2f(2.0f * SKY_MAP_HORIZON * f->sky_map_size /
+                              (1.0f + maxf(rz, 0.0f)));
     o[VSHADE_GEO + 3] = t[1];
     o[VSHADE_FOG + 3] = 0.0f;
     /* aerial perspective (vterms.glsl): (1 - T) times the horizon sky of the view's azimuth */

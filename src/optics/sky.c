@@ -159,9 +159,9 @@ void sky_map_uv(const float rin[3], float uv[2])
 
 double sky_fresnel_avg(void)
 {
-    /* midpoint rule in mu^2 (the integrand F(mu) d(mu^2)): 512 steps, the grazing end (F -> 1)
-     * resolved; within 1e-5 of the converged value */
-    const int n = 512;
+    /* midpoint rule in mu^2 (the integrand F(mu) d(mu^2)): 4096 steps, within 2e-6 of the
+     * converged value (the grazing end, F -> 1, converges slowest) */
+    const int n = 4096;
     double sum = 0.0;
     for (int k = 0; k < n; k++)
         sum += fresnel_exact(sqrt((k + 0.5) / n), SWELL_WATER_IOR);
@@ -222,14 +222,17 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
      * coordinates x, y over SKY_MAP_HORIZON), and the sky irradiance on a horizontal plane: L
      * cos(theta) over the hemisphere in the map's own measure, d omega = 4 / (1 + r^2)^2 dx dy
      * for the stereographic projection (dx dy the texel's area in those coordinates). Then the
-     * ring outside the circle: the radiance below the horizon (sky.h). */
+     * ring outside the circle (marked -1 meanwhile): the radiance below the horizon (sky.h). */
     const float hs = SKY_MAP_HORIZON;
     for (int j = 0; j < size; j++)
         for (int i = 0; i < size; i++) {
-            float x = (2.0f * (i + 0.5f) / size - 1.0f) / hs, y = (2.0f * (j + 0.5f) / size - 1.0f) / hs;
+            float x = (2.0f * (i + 0.5f) / size - 1.0f) / hs;
+            float y = (2.0f * (j + 0.5f) / size - 1.0f) / hs;
             float r2 = x * x + y * y, dir[3], *px = lin + 3 * ((size_t)j * size + i);
-            if (r2 >= 1.0f)
+            if (r2 >= 1.0f) {
+                px[0] = -1.0f;
                 continue;
+            }
             dir[0] = 2.0f * x / (1.0f + r2);
             dir[1] = 2.0f * y / (1.0f + r2);
             dir[2] = (1.0f - r2) / (1.0f + r2);
@@ -244,12 +247,9 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
         for (int c = 0; c < 3; c++)
             out->below[c] = f_avg * out->sky_irr[c] / (float)M_PI;
     }
-    for (int j = 0; j < size; j++)
-        for (int i = 0; i < size; i++) {
-            float x = (2.0f * (i + 0.5f) / size - 1.0f) / hs, y = (2.0f * (j + 0.5f) / size - 1.0f) / hs;
-            if (x * x + y * y >= 1.0f)
-                memcpy(lin + 3 * ((size_t)j * size + i), out->below, sizeof(out->below));
-        }
+    for (size_t k = 0; k < (size_t)size * size; k++)
+        if (lin[3 * k] < 0.0f)
+            memcpy(lin + 3 * k, out->below, sizeof(out->below));
     for (size_t k = 0; k < 3 * (size_t)size * size; k++)
         maxv = fmaxf(maxv, lin[k]);
     out->map_scale = maxv;
