@@ -147,11 +147,19 @@ $(PC): tools/swell.pc.in include/swell.h
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|g' -e 's|@VERSION@|$(SO_VERSION)|g' \
 	    -e 's|@PRIVATE@|$(filter-out cglm egl glesv2,$(LIB_PKGS))|g' $< > $@
 
-$(SWELL_BAKE): $(BUILD)/obj/app/swell_bake.o $(LIB)
-	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+# The programs are built on the public API as an embedding application is: linked with
+# libswell.a (swell.h's names alone), their own modules (app, platform) and the core helpers
+# they share with the library (arguments, numbers, camera matrices, PNG, files, errors, the
+# data directory; no ocean in them). A call into any other module fails to link.
+APP_HELPERS := args parse camera image fsutil fail datadir
+HELPER_OBJ := $(APP_HELPERS:%=$(BUILD)/obj/core/%.o)
+APP_OBJ := $(filter $(BUILD)/obj/app/% $(BUILD)/obj/platform/%,$(LIB_OBJ))
 
-$(SWELL): $(BUILD)/obj/app/swell.o $(LIB)
-	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL)
+$(SWELL_BAKE): $(BUILD)/obj/app/swell_bake.o $(HELPER_OBJ) $(STLIB)
+	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $^ $(LDLIBS_ALL)
+
+$(SWELL): $(BUILD)/obj/app/swell.o $(APP_OBJ) $(HELPER_OBJ) $(STLIB)
+	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $^ $(LDLIBS_ALL)
 
 $(BUILD)/tests/%: $(BUILD)/tests/%.o $(LIB)
 	$(CC) $(OPT) $(SANFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS_ALL) -lcmocka

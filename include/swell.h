@@ -28,9 +28,9 @@ extern "C" {
 #endif
 
 #define SWELL_VERSION_MAJOR 0
-#define SWELL_VERSION_MINOR 5
+#define SWELL_VERSION_MINOR 6
 #define SWELL_VERSION_PATCH 0
-#define SWELL_VERSION_STRING "0.5.0"
+#define SWELL_VERSION_STRING "0.6.0"
 /* (major << 16) | (minor << 8) | patch, comparable with swell_version() */
 #define SWELL_VERSION_NUMBER \
     ((SWELL_VERSION_MAJOR << 16) | (SWELL_VERSION_MINOR << 8) | SWELL_VERSION_PATCH)
@@ -76,6 +76,10 @@ SWELL_API uint32_t swell_version(void);
 
 typedef struct swell_sea swell_sea;
 
+/* The range of swell_sea_desc wind_speed_mps (and of swell-bake --wind), m/s. */
+#define SWELL_WIND_SPEED_MIN_MPS 0.5
+#define SWELL_WIND_SPEED_MAX_MPS 40.0
+
 typedef struct swell_sea_desc {
     const char *preset;         /* NULL, or a preset applied first: "calm", "moderate",
                                  * "rough", "storm" (swell-bake --help), or a .preset path */
@@ -112,6 +116,11 @@ enum swell_usage { SWELL_USAGE_SEA = 0, SWELL_USAGE_TABLES, SWELL_USAGE_DATA };
 SWELL_API size_t swell_sea_usage(int what, char *buf, size_t cap);
 /* Load tables baked by swell-bake (or swell_sea_save) from a directory. */
 SWELL_API int swell_sea_load(const char *dir, swell_sea **out, struct swell_err *err);
+/* The same for oceans that may take budget_bytes of GPU memory (1 MiB..1 GiB; 0: the budget
+ * the set was baked for): refused with SWELL_E_BUDGET, before any table is read, when an ocean
+ * of this set needs more; the sea's oceans then keep within budget_bytes. */
+SWELL_API int swell_sea_load_budget(const char *dir, uint64_t budget_bytes, swell_sea **out,
+                                    struct swell_err *err);
 /* Write the sea's tables to a directory, atomically (a reader sees the old set or the new). */
 SWELL_API int swell_sea_save(const swell_sea *sea, const char *dir, struct swell_err *err);
 SWELL_API void swell_sea_destroy(swell_sea *sea);
@@ -248,6 +257,17 @@ typedef struct swell_ocean_desc {
                                  * (swell_ocean_begin_refraction): one more texture unit and a
                                  * target as the reflection's, without mipmaps (1.1 MiB at
                                  * 1280 x 720); default 0 */
+    int pixel_lod;              /* 1: the texture level chosen per pixel everywhere; default 0:
+                                 * where the device prefers it (software rasterisers), one
+                                 * whole level per run of rows, faded between runs */
+    void (*note)(void *user, const char *msg);
+                                /* NULL, or told each fallback swell_ocean_create takes (a
+                                 * program the driver refused and what is drawn instead), one
+                                 * message per call, lines separated by '\n' */
+    void *note_user;            /* note's first argument */
+    int debug_programs;         /* 1: a diagnostic frame: every run of sea rows drawn in one
+                                 * flat colour naming its shader program (swell_ocean_program_at),
+                                 * the rest white, no sky; default 0 */
 } swell_ocean_desc;
 
 /* Create the GPU side of a sea in the GL context current on this thread (OpenGL ES 2.0 or
@@ -382,10 +402,12 @@ SWELL_API int swell_ocean_end_shadow(swell_ocean *ocean, struct swell_err *err);
  * and slope variance to the sea's, and its foam (the stern's turbulent strip and where the
  * wake breaks, decaying with the sea's foam half-life) to the whitecaps. Slopes and foam only:
  * the geometry and swell_sea_sample do not include the wake's heights (decimetres). */
+#define SWELL_WAKE_SPEED_MIN_MPS 0.5    /* the slowest hull that makes a wake, m/s */
 typedef struct swell_wake {
     double position_m[2];       /* the hull's middle on the water line, world x, y */
     float heading_deg;          /* its course, CCW from east */
-    float speed_mps;            /* through the water, 0.5..30 m/s; 0: no wake */
+    float speed_mps;            /* through the water, SWELL_WAKE_SPEED_MIN_MPS..30 m/s; 0: no
+                                 * wake */
     float hull_length_m;        /* 1..400 m; 0 = 9 m */
     float beam_m;               /* 0.2..100 m; 0 = a third of the length */
 } swell_wake;
@@ -395,6 +417,61 @@ typedef struct swell_wake {
  * x86 VM). */
 SWELL_API int swell_ocean_set_wake(swell_ocean *ocean, const swell_wake *wake,
                                    struct swell_err *err);
+
+/* What an ocean is and did. */
+typedef struct swell_ocean_stats {
+    int tier;                   /* enum swell_tier in use (never SWELL_TIER_BEST) */
+    int tier_available;         /* the best tier the context offers */
+    int quality;                /* enum swell_quality in use: a driver that refuses every
+                                 * high-quality program gets low quality */
+    int detile;                 /* 1: the patterns are read detiled (swell_sample_desc no_detile
+                                 * 0 samples the same sea), 0: once, at no offset */
+    int objects;                /* 1: reflections, wakes, shadows and refractions were asked for
+                                 * and the driver runs them; 0: swell_ocean_begin_* fail */
+    uint64_t gpu_bytes;         /* GPU memory the ocean holds (tables, maps, buffers), bytes */
+    uint64_t gpu_bytes_charged; /* all that is charged to its budget: gpu_bytes and the
+                                 * targets of its swell_upscale */
+    uint64_t budget_bytes;      /* the budget it keeps within */
+    int vertices, triangles;    /* of the sea's mesh */
+    uint64_t cpu_bytes_per_frame; /* bytes streamed to the GPU per draw */
+    double camera_raise_m;      /* the last draw drew the camera this much higher, m: it was
+                                 * less than 0.3 m above the water under it */
+} swell_ocean_stats;
+SWELL_API void swell_ocean_get_stats(const swell_ocean *ocean, swell_ocean_stats *out);
+/* How the ocean draws, in lines of "what: how" (its tier, geometry, programs, fallbacks), as
+ * snprintf writes (at most cap bytes with the terminating 0); returns the whole length. */
+SWELL_API size_t swell_ocean_describe(const swell_ocean *ocean, char *buf, size_t cap);
+/* In a frame drawn with debug_programs: the program that drew a pixel (its RGBA8 as read
+ * back), its name written to name ("ocean k=2 kw=1 high", at most cap bytes); returns a
+ * program's index >= 0, SWELL_PIXEL_SKY where no sea was drawn, SWELL_PIXEL_MIXED for a
+ * colour no program writes (the edge of a run, a blend). */
+enum { SWELL_PIXEL_SKY = -1, SWELL_PIXEL_MIXED = -2 };
+SWELL_API int swell_ocean_program_at(const swell_ocean *ocean, const uint8_t rgba[4],
+                                     char *name, size_t cap);
+
+/* ---- render scale: the frame drawn smaller and stretched over the output ---------------- */
+
+/* For GPUs whose fragment rate cannot shade every output pixel (a Mali-400 at 1080p): the
+ * application's frame, sea and objects, drawn into a target of scale x the output's size and
+ * stretched over the output by one bilinear fetch a pixel (scale^2 of the pixels shaded; the
+ * picture blurs). The target (RGBA8, 16-bit depth when depth_bits > 0) is charged to the
+ * ocean's GPU memory budget; creating it draws the stretch once, so a driver that refuses it
+ * is told here (SWELL_E_SHADER), not at a frame. */
+typedef struct swell_upscale swell_upscale;
+#define SWELL_UPSCALE_MIN 0.25
+#define SWELL_UPSCALE_MAX 1.0
+SWELL_API int swell_upscale_create(swell_ocean *ocean, int out_width, int out_height,
+                                   double scale, int depth_bits, swell_upscale **out,
+                                   struct swell_err *err);
+/* The target's size: round(out x scale), at least 1 pixel; draw the frame at this size. */
+SWELL_API void swell_upscale_size(const swell_upscale *up, int *width, int *height);
+/* Before the frame: the framebuffer bound now is the output; the target is bound. */
+SWELL_API void swell_upscale_begin(swell_upscale *up);
+/* After it: the output bound again and the target stretched over all of it (viewport 0, 0,
+ * out_width, out_height; the program, buffer, texture binding of the ocean's first unit and
+ * vertex attribute 0 restored as swell_ocean_draw restores them). */
+SWELL_API int swell_upscale_end(swell_upscale *up, struct swell_err *err);
+SWELL_API void swell_upscale_destroy(swell_upscale *up);
 
 /* Move the sun (re-bakes the sky map: not for every frame). */
 SWELL_API int swell_ocean_set_sun(swell_ocean *ocean, float elev_deg, float azim_deg,

@@ -17,6 +17,8 @@ struct swell_ocean {
     struct gpu gpu;
     struct renderer *renderer;
     int unit0, units;           /* the texture units it may bind (swell_ocean_desc) */
+    int quality;                /* in use: renderer_open may fall back to low */
+    char *shader_dir;           /* swell_ocean_desc's, copied; NULL: the installed shaders */
 };
 
 #endif

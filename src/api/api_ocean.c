@@ -49,6 +49,10 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
     if (!o)
         return swell_fail(err, SWELL_E_NOMEM, "swell_ocean_create: no memory");
     o->sea = sea;
+    if (d->shader_dir && !(o->shader_dir = strdup(d->shader_dir))) {
+        free(o);
+        return swell_fail(err, SWELL_E_NOMEM, "swell_ocean_create: no memory");
+    }
     struct renderer_desc rd = {
         .tables = &sea->tables, .shader_dir = d->shader_dir, .quality = d->quality,
         .geometry = d->geometry, .sun_elev_deg = d->sun_elev_deg,
@@ -56,16 +60,19 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .texture_unit_first = d->texture_unit_first, .texture_unit_count = d->texture_unit_count,
         .linear_output = d->linear_output, .reflections = d->reflections != 0,
         .wakes = d->wakes != 0, .shadows = d->shadows != 0,
-        .refractions = d->refractions != 0,
+        .refractions = d->refractions != 0, .pixel_lod = d->pixel_lod != 0,
+        .debug_variants = d->debug_programs != 0,
     };
     struct gl_state st;
     o->unit0 = d->texture_unit_first;
     o->units = d->texture_unit_count;
     save_state(o, &st);
-    int rc = renderer_open(&rd, &o->gpu, d->tier - 1, sea->tables.state.budget_bytes, NULL,
-                           NULL, &o->renderer, err);
+    int rc = renderer_open(&rd, &o->gpu, d->tier - 1, sea->tables.state.budget_bytes, d->note,
+                           d->note_user, &o->renderer, err);
+    o->quality = rd.quality;
     gl_state_restore(&st);
     if (rc) {
+        free(o->shader_dir);
         free(o);
         return rc;
     }
@@ -288,11 +295,62 @@ int swell_ocean_set_sun(swell_ocean *o, float elev_deg, float azim_deg, struct s
     return rc;
 }
 
+void swell_ocean_get_stats(const swell_ocean *o, swell_ocean_stats *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!o)
+        return;
+    struct renderer_stats st;
+    renderer_get_stats(o->renderer, &st);
+    out->tier = o->gpu.caps.tier + 1;
+    out->tier_available = o->gpu.caps.tier_available + 1;
+    out->quality = o->quality;
+    out->detile = renderer_detile(o->renderer);
+    out->objects = renderer_objects(o->renderer);
+    out->gpu_bytes = st.gpu_bytes;
+    out->gpu_bytes_charged = o->gpu.bytes;
+    out->budget_bytes = o->gpu.budget_bytes;
+    out->vertices = st.vertices;
+    out->triangles = st.triangles;
+    out->cpu_bytes_per_frame = st.cpu_bytes_per_frame;
+    out->camera_raise_m = st.camera_raise_m;
+}
+
+size_t swell_ocean_describe(const swell_ocean *o, char *buf, size_t cap)
+{
+    char text[4096];
+    text[0] = '\0';
+    if (o)
+        renderer_describe(o->renderer, text, sizeof text);
+    size_t len = strlen(text);
+    if (cap) {
+        size_t n = len < cap - 1 ? len : cap - 1;
+        memcpy(buf, text, n);
+        buf[n] = '\0';
+    }
+    return len;
+}
+
+_Static_assert((int)SWELL_PIXEL_SKY == (int)RENDERER_PIXEL_SKY &&
+               (int)SWELL_PIXEL_MIXED == (int)RENDERER_PIXEL_MIXED,
+               "swell.h's pixel codes are the renderer's");
+
+int swell_ocean_program_at(const swell_ocean *o, const uint8_t rgba[4], char *name, size_t cap)
+{
+    int v = renderer_pixel_variant(rgba);
+    if (cap)
+        name[0] = '\0';
+    if (o && v >= 0 && cap)
+        renderer_program_name(o->renderer, v, name, cap);
+    return v;
+}
+
 void swell_ocean_destroy(swell_ocean *o)
 {
     if (!o)
         return;
     renderer_destroy(o->renderer);
     gpu_shutdown(&o->gpu);
+    free(o->shader_dir);
     free(o);
 }

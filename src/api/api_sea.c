@@ -111,21 +111,33 @@ size_t swell_sea_usage(int what, char *buf, size_t cap)
     return len;
 }
 
-int swell_sea_load(const char *dir, swell_sea **out, struct swell_err *err)
+int swell_sea_load_budget(const char *dir, uint64_t budget_bytes, swell_sea **out,
+                          struct swell_err *err)
 {
     if (!out || !dir)
         return swell_fail(err, SWELL_E_ARG, "swell_sea_load: dir and out must not be NULL");
     *out = NULL;
+    if (budget_bytes && (budget_bytes < (1u << 20) || budget_bytes > (1u << 30)))
+        return swell_fail(err, SWELL_E_ARG, "swell_sea_load_budget: budget %llu bytes is out "
+                          "of range (1 MiB to 1 GiB, or 0 for the set's own)",
+                          (unsigned long long)budget_bytes);
     swell_sea *sea = calloc(1, sizeof *sea);
     if (!sea)
         return swell_fail(err, SWELL_E_NOMEM, "swell_sea_load: no memory for a sea");
-    int rc = tables_load_dir(dir, &sea->tables, err);
+    int rc = tables_load_dir_within(dir, budget_bytes, &sea->tables, err);
     if (rc) {
         free(sea);
         return rc;
     }
+    if (budget_bytes)   /* what its oceans keep within (swell_ocean_create) */
+        sea->tables.state.budget_bytes = budget_bytes;
     *out = sea;
     return SWELL_OK;
+}
+
+int swell_sea_load(const char *dir, swell_sea **out, struct swell_err *err)
+{
+    return swell_sea_load_budget(dir, 0, out, err);
 }
 
 int swell_sea_save(const swell_sea *sea, const char *dir, struct swell_err *err)

@@ -13,10 +13,8 @@
 #include <linux/perf_event.h>
 
 #include "app/bench.h"
+#include "app/glapp.h"
 #include "core/fsutil.h"
-#include "gl/shader.h"
-#include "tables/tables.h"
-#include "render/upscale.h"
 
 #define JSON_MAX 8192
 
@@ -121,21 +119,22 @@ void bench_counter_close(struct bench_counter *c)
 
 enum { QU_TEX = 0, QU_UV_SCALE, QU_COUNT };
 static const char *const quad_uniform_names[QU_COUNT] = { "quad_tex", "uv_scale" };
-static const struct shader_attrib quad_attribs[1] = { { "a_ndc", 0 } };
 
 struct quad {
-    struct gpu gpu;                 /* accounting of the baseline's own objects, no budget */
-    struct shader_program prog;
+    GLuint prog;
     GLint u[QU_COUNT];
     GLuint tex, vbo;
 };
 
 static void quad_destroy(struct quad *q)
 {
-    gpu_buffer_destroy(&q->gpu, &q->vbo);
-    gpu_texture_destroy(&q->gpu, &q->tex);
-    shader_program_destroy(&q->prog);
-    gpu_shutdown(&q->gpu);
+    if (q->vbo)
+        glDeleteBuffers(1, &q->vbo);
+    if (q->tex)
+        glDeleteTextures(1, &q->tex);
+    if (q->prog)
+        glDeleteProgram(q->prog);
+    memset(q, 0, sizeof *q);
 }
 
 /* Deterministic noise (an integer hash) so the texture cache sees real content, not one colour. */
@@ -149,29 +148,18 @@ static uint32_t hash32(uint32_t x)
     return x;
 }
 
-static int quad_create(struct quad *q, int tier, const char *shader_dir, struct swell_err *err)
+static int quad_create(struct quad *q, int swell_tier, struct swell_err *err)
 {
     static const float ndc[8] = { -1, -1, 1, -1, -1, 1, 1, 1 };
+    static const char *const attribs[] = { "a_ndc", NULL };
     const int n = BENCH_QUAD_SIZE;
-    int levels = 1;
-    while (n >> levels)
-        levels++;
     memset(q, 0, sizeof *q);
-    int rc = gpu_init(&q->gpu, tier, 0, err);
+    int rc = glapp_program("bench_quad.vert", "bench_quad.frag", attribs, swell_tier, &q->prog,
+                           err);
     if (rc)
         goto fail;
-    struct shader_desc sd = {
-        .dir = shader_dir, .vs_file = "bench_quad.vert", .fs_file = "bench_quad.frag",
-        .caps = &q->gpu.caps, .uniform_names = quad_uniform_names, .uniform_count = QU_COUNT,
-        .uniform_locations = q->u, .attribs = quad_attribs, .attrib_count = 1,
-    };
-    rc = shader_program_build(&sd, &q->prog, err);
-    if (rc)
-        goto fail;
-    rc = gpu_texture_create(&q->gpu, n, n, levels, FORMAT_RGBA8, 1, "bench: baseline texture",
-                            &q->tex, err);
-    if (rc)
-        goto fail;
+    for (int i = 0; i < QU_COUNT; i++)
+        q->u[i] = glGetUniformLocation(q->prog, quad_uniform_names[i]);
     uint32_t *texels = malloc((size_t)n * (size_t)n * sizeof *texels);
     if (!texels) {
         rc = swell_fail(err, SWELL_E_NOMEM, "bench: no memory for the %dx%d baseline texture",
@@ -180,17 +168,22 @@ static int quad_create(struct quad *q, int tier, const char *shader_dir, struct 
     }
     for (int i = 0; i < n * n; i++)
         texels[i] = hash32((uint32_t)i) | 0xff000000u;
+    /* RGBA8, mipmapped, trilinear, repeating; never anisotropic (notes/llvmpipe.md) */
+    glActiveTexture(GL_TEXTURE0);
+    glGenTextures(1, &q->tex);
     glBindTexture(GL_TEXTURE_2D, q->tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
     glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     free(texels);
-    rc = gpu_buffer_create(&q->gpu, GL_ARRAY_BUFFER, sizeof ndc, GL_STATIC_DRAW,
-                           "bench: baseline quad", &q->vbo, err);
-    if (rc)
-        goto fail;
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof ndc, ndc);
-    rc = gpu_check("bench: baseline upload", err);
+    glGenBuffers(1, &q->vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, q->vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof ndc, ndc, GL_STATIC_DRAW);
+    rc = glapp_check("bench: baseline upload", err);
     if (rc)
         goto fail;
     return SWELL_OK;
@@ -209,7 +202,7 @@ static int quad_draw(struct quad *q, int w, int h, struct swell_err *err)
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    glUseProgram(q->prog.program);
+    glUseProgram(q->prog);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, q->tex);
     glUniform1i(q->u[QU_TEX], 0);
@@ -220,7 +213,7 @@ static int quad_draw(struct quad *q, int w, int h, struct swell_err *err)
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     glDisableVertexAttribArray(0);
-    return gpu_check("bench: baseline quad", err);
+    return glapp_check("bench: baseline quad", err);
 }
 
 /* ---- the run ------------------------------------------------------------------------------- */
@@ -240,22 +233,11 @@ static int scene_frame(const struct bench_desc *d, struct bench_counter *c, doub
     if (d->path > CAMERA_PATH_NONE)
         camera_path_at(d->path, t, &cam);
     double t0 = now_ms();
-    struct upscale *up = d->upscale;
     int rc = d->ph->be->begin_frame(d->ph->p, err);
     if (!rc) {
         if (c)
             bench_counter_start(c);
-        if (up)
-            upscale_begin(up);
-        int fw = up ? up->w : w, fh = up ? up->h : h;
-        if (d->before)
-            rc = d->before(d->ctx, &cam, t, fw, fh, err);
-        if (!rc)
-            rc = renderer_frame(d->renderer, &cam, t, fw, fh, err);
-        if (!rc && d->after)
-            rc = d->after(d->ctx, &cam, t, fw, fh, err);
-        if (!rc && up)
-            rc = upscale_end(up, err);
+        rc = d->frame(d->ctx, &cam, t, err);
         if (c)
             *instr = bench_counter_stop(c);
     }
@@ -300,7 +282,7 @@ int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell
         rc = swell_fail(err, SWELL_E_NOMEM, "bench: no memory for %d frame times", frames);
         goto done;
     }
-    rc = quad_create(&q, d->gpu->caps.tier, d->shader_dir, err);
+    rc = quad_create(&q, d->swell_tier, err);
     if (rc)
         goto done;
 
@@ -327,7 +309,7 @@ int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell
     out->ratio = out->quad.median_ms > 0 ? out->frame.median_ms / out->quad.median_ms : 0.0;
     out->width = w;
     out->height = h;
-    out->scale = d->upscale ? (double)d->upscale->w / w : 1.0;
+    out->scale = d->scale > 0 ? d->scale : 1.0;
     out->warmup = warmup;
     out->frames = frames;
     out->step_s = step;
@@ -336,25 +318,13 @@ int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell
     copy_label(out->geometry, sizeof out->geometry, d->geometry);
     copy_label(out->detile, sizeof out->detile, d->detile ? d->detile : "on");
     copy_label(out->platform, sizeof out->platform, d->platform ? d->platform : d->ph->be->name);
-    copy_label(out->tier, sizeof out->tier, gpu_tier_name(d->gpu->caps.tier));
+    copy_label(out->tier, sizeof out->tier, glapp_tier_name(d->swell_tier));
     copy_label(out->path, sizeof out->path,
                d->path > CAMERA_PATH_NONE ? camera_path_name(d->path) : "fixed");
-    copy_label(out->gl_renderer, sizeof out->gl_renderer, d->gpu->caps.renderer);
+    copy_label(out->gl_renderer, sizeof out->gl_renderer,
+               (const char *)glGetString(GL_RENDERER));
 
-    struct renderer_stats st;
-    renderer_get_stats(d->renderer, &st);
-    out->bytes_gpu = st.gpu_bytes;
-    out->budget_bytes = d->gpu->budget_bytes;
-    out->bytes_streamed_per_frame = st.cpu_bytes_per_frame;
-    out->vertices = st.vertices;
-    out->triangles = st.triangles;
-    out->cpu_scope = d->before || d->after
-        ? "renderer_frame and the application's work around it (the boat's wake, reflection "
-          "pass and draw) on the calling thread, with the GL calls (on a software GL the "
-          "driver's vertex processing runs here too)"
-        : "renderer_frame on the calling thread: grid projection and displacement, "
-          "loop-frame blending and the GL calls (on a software GL the driver's vertex "
-          "processing runs here too)";
+    out->cpu_scope = d->cpu_scope ? d->cpu_scope : "the scene's frame on the calling thread";
     if (ctr.fd >= 0) {
         out->cpu_valid = 1;
         out->cpu_instructions_per_frame = (double)instr_sum / frames;

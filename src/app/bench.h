@@ -15,11 +15,7 @@
 #include <stdint.h>
 #include "core/camera.h"
 #include "core/err.h"
-#include "gl/gpu.h"
 #include "platform/platform.h"
-#include "render/renderer.h"
-
-struct upscale;
 
 #define BENCH_DEFAULT_FRAMES 100    /* timed frames (issue 5: >= 100 after warm-up) */
 #define BENCH_DEFAULT_WARMUP 10
@@ -53,11 +49,10 @@ void bench_counter_close(struct bench_counter *c);      /* accepts a zeroed or c
 
 struct bench_desc {
     struct platform_handle *ph;     /* not owned */
-    struct renderer *renderer;      /* not owned */
-    struct gpu *gpu;                /* the renderer's accounting; not owned */
-    struct upscale *upscale;        /* render scale (upscale.h): the scene drawn into its
-                                       target and stretched; NULL = none. not owned */
-    const char *shader_dir;         /* baseline shaders; NULL: core/datadir.h */
+    /* One frame of the scene into the platform's framebuffer (the app's: sea and objects,
+     * through swell.h; swell.c), with the camera of this frame */
+    int (*frame)(void *ctx, const struct camera *cam, double t, struct swell_err *err);
+    void *ctx;
     struct camera camera;           /* used when path is CAMERA_PATH_NONE */
     int path;                       /* enum camera_path */
     double time0_s;                 /* animation time of the first warm-up frame, s */
@@ -65,17 +60,13 @@ struct bench_desc {
     int warmup;                     /* untimed frames first; default 0 = BENCH_DEFAULT_WARMUP,
                                        negative = none */
     int frames;                     /* timed frames; default 0 = BENCH_DEFAULT_FRAMES */
+    int swell_tier;                 /* the ocean's (swell_ocean_stats): the baseline's shader
+                                       labels */
+    double scale;                   /* the render scale the frame uses; 0 = 1 */
     /* labels copied into the result */
     const char *scene, *quality, *geometry, *platform;
     const char *detile;             /* "on" | "off" (swell --detile); default "on" */
-    /* The application's own work in each timed frame, around renderer_frame (the demo boat:
-     * its wake and reflection pass before the sea, the boat after; swell.c), with the camera
-     * the sea is drawn with and the frame's size; NULL: none */
-    int (*before)(void *ctx, const struct camera *cam, double t, int w, int h,
-                  struct swell_err *err);
-    int (*after)(void *ctx, const struct camera *cam, double t, int w, int h,
-                 struct swell_err *err);
-    void *ctx;
+    const char *cpu_scope;          /* what frame does on the calling thread (static text) */
 };
 
 struct bench_result {
@@ -90,16 +81,17 @@ struct bench_result {
     int cpu_valid;                  /* 0: cpu_instructions_per_frame is null (see notes) */
     double cpu_instructions_per_frame;
     const char *cpu_scope;          /* what the count covers (static text) */
-    uint64_t bytes_gpu;             /* renderer's accounted GPU bytes (gpu.h) */
+    uint64_t bytes_gpu;             /* the ocean's GPU bytes (swell_ocean_stats gpu_bytes) */
     uint64_t budget_bytes;
     uint64_t bytes_streamed_per_frame;
     int vertices, triangles;
     char notes[512];
 };
 
-/* Warm-up, then frames timed scene/quad interleaved; fills out. The baseline's texture and
- * buffer are accounted on a gpu record of their own (not charged to the renderer's budget) and
- * freed before returning. */
+/* Warm-up, then frames timed scene/quad interleaved; fills out but for the ocean's sizes
+ * (bytes_gpu, budget_bytes, bytes_streamed_per_frame, vertices, triangles: the caller's, from
+ * swell_ocean_stats). The baseline's texture and buffer are the benchmark's own (not charged
+ * to the ocean's budget) and freed before returning. */
 int bench_run(const struct bench_desc *d, struct bench_result *out, struct swell_err *err);
 
 /* The result as one JSON object (no trailing newline). Returns the length it needs (like

@@ -4,10 +4,11 @@
 #include <string.h>
 #include <GLES2/gl2.h>
 
+#include <cglm/cglm.h>
+
 #include "app/boat.h"
-#include "core/camera.h"
-#include "geometry/sea.h"
-#include "gl/shader.h"
+#include "app/glapp.h"
+#include "core/err.h"
 
 #define BOAT_VERTS_MAX 256
 #define FLOATS 9                    /* position, normal, colour */
@@ -20,7 +21,7 @@ enum { U_MVP, U_ROT, U_SUN, U_ATT, U_COUNT };
 struct boat {
     struct boat_desc d;
     struct boat_pose pose;
-    struct shader_program prog;
+    GLuint prog;
     GLint u[U_COUNT];
     GLuint vbo;
     int verts;
@@ -122,27 +123,22 @@ static void build_mesh(struct mesh *m)
     add_box(m, 1.2f, 1.35f, -0.07f, 0.07f, FREEBOARD, (float)BOAT_MAST_M, mast, mast);
 }
 
-int boat_create(const struct boat_desc *d, const char *shader_dir, const struct gpu_caps *caps,
-                struct boat **out, struct swell_err *err)
+int boat_create(const struct boat_desc *d, int swell_tier, struct boat **out,
+                struct swell_err *err)
 {
     static const char *const names[U_COUNT] = { "mvp", "model_rot", "sun_dir", "attenuation" };
-    static const struct shader_attrib attribs[3] = {
-        { "a_pos", 0 }, { "a_normal", 1 }, { "a_color", 2 }
-    };
+    static const char *const attribs[] = { "a_pos", "a_normal", "a_color", NULL };
     struct boat *b = calloc(1, sizeof *b);
     if (!b)
         return swell_fail(err, SWELL_E_NOMEM, "boat: no memory");
     b->d = *d;
-    struct shader_desc sd = {
-        .dir = shader_dir, .vs_file = "boat.vert", .fs_file = "boat.frag", .caps = caps,
-        .uniform_names = names, .uniform_count = U_COUNT, .uniform_locations = b->u,
-        .attribs = attribs, .attrib_count = 3,
-    };
-    int rc = shader_program_build(&sd, &b->prog, err);
+    int rc = glapp_program("boat.vert", "boat.frag", attribs, swell_tier, &b->prog, err);
     if (rc) {
         free(b);
         return rc;
     }
+    for (int i = 0; i < U_COUNT; i++)
+        b->u[i] = glGetUniformLocation(b->prog, names[i]);
     static struct mesh m;
     m.n = 0;
     build_mesh(&m);
@@ -151,7 +147,7 @@ int boat_create(const struct boat_desc *d, const char *shader_dir, const struct 
     glBindBuffer(GL_ARRAY_BUFFER, b->vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * FLOATS * (size_t)m.n), m.v,
                  GL_STATIC_DRAW);
-    if ((rc = gpu_check("boat: its mesh", err))) {
+    if ((rc = glapp_check("boat: its mesh", err))) {
         boat_destroy(b);
         return rc;
     }
@@ -159,7 +155,8 @@ int boat_create(const struct boat_desc *d, const char *shader_dir, const struct 
     return SWELL_OK;
 }
 
-void boat_pose_at(struct boat *b, const struct swell_tables *t, int detile, double t_s)
+int boat_pose_at(struct boat *b, const swell_sea *sea, int detile, double t_s,
+                 struct swell_err *err)
 {
     double h = b->d.heading_deg * PI_D / 180.0, ch = cos(h), sh = sin(h);
     double run = b->d.speed_mps * (t_s - b->d.t0_s);
@@ -167,15 +164,19 @@ void boat_pose_at(struct boat *b, const struct swell_tables *t, int detile, doub
     /* bow, stern (0.8 of the length apart), port, starboard at mid-length */
     const double lx = 0.4 * BOAT_LENGTH_M, ly = 0.5 * BOAT_BEAM_M;
     const double pts[4][2] = { { lx, 0 }, { -lx, 0 }, { 0, ly }, { 0, -ly } };
-    double z[4];
-    struct sea_query q;
-    sea_query_init(t, detile, BOAT_LENGTH_M, &q);
+    double xy[8], z[4];
     for (int i = 0; i < 4; i++) {
-        struct sea_point sp;
-        sea_query_point(t, &q, x + pts[i][0] * ch - pts[i][1] * sh,
-                        y + pts[i][0] * sh + pts[i][1] * ch, t_s, &sp);
-        z[i] = sp.height;
+        xy[2 * i] = x + pts[i][0] * ch - pts[i][1] * sh;
+        xy[2 * i + 1] = y + pts[i][0] * sh + pts[i][1] * ch;
     }
+    /* the hull does not feel waves shorter than itself */
+    swell_sample_desc sd = { .min_wavelength_m = BOAT_LENGTH_M, .no_detile = !detile };
+    swell_sample s[4];
+    int rc = swell_sea_sample(sea, &sd, xy, 4, t_s, s, err);
+    if (rc)
+        return swell_err_context(err, "the boat's pose at t = %.3f s", t_s);
+    for (int i = 0; i < 4; i++)
+        z[i] = s[i].height_m;
     struct boat_pose *p = &b->pose;
     p->pos[0] = x;
     p->pos[1] = y;
@@ -194,6 +195,7 @@ void boat_pose_at(struct boat *b, const struct swell_tables *t, int detile, doub
         p->rot[3 * c + 1] = (float)(sh * cols[c][0] + ch * cols[c][1]);
         p->rot[3 * c + 2] = (float)cols[c][2];
     }
+    return SWELL_OK;
 }
 
 const struct boat_pose *boat_pose(const struct boat *b)
@@ -219,7 +221,7 @@ void boat_draw(const struct boat *b, const float view[16], const float proj[16],
     memcpy(v, view, sizeof v);
     memcpy(pr, proj, sizeof pr);
     glm_mat4_mulN((mat4 *[]){ &pr, &v, &model }, 3, mvp);
-    glUseProgram(b->prog.program);
+    glUseProgram(b->prog);
     glUniformMatrix4fv(b->u[U_MVP], 1, GL_FALSE, (const GLfloat *)mvp);
     glUniformMatrix3fv(b->u[U_ROT], 1, GL_FALSE, p->rot);
     glUniform3fv(b->u[U_SUN], 1, sun_dir);
@@ -248,6 +250,7 @@ void boat_destroy(struct boat *b)
         return;
     if (b->vbo)
         glDeleteBuffers(1, &b->vbo);
-    shader_program_destroy(&b->prog);
+    if (b->prog)
+        glDeleteProgram(b->prog);
     free(b);
 }

@@ -7,9 +7,7 @@
 #ifndef SWELL_BOAT_H
 #define SWELL_BOAT_H
 
-#include "core/err.h"
-#include "gl/gpu.h"
-#include "tables/tables.h"
+#include "swell.h"
 
 #define BOAT_LENGTH_M 9.0         /* overall, bow to transom */
 #define BOAT_BEAM_M 3.0
@@ -32,12 +30,14 @@ struct boat_pose {
 
 struct boat;
 
-int  boat_create(const struct boat_desc *d, const char *shader_dir, const struct gpu_caps *caps,
-                 struct boat **out, struct swell_err *err);
-/* Its pose at t_s on the sea of tables t (detile as the renderer draws, renderer_detile): the
- * water under its bow, stern and both sides at mid-length, low-passed to waves longer than the
- * hull (sea.h sea_query_init); heave the mean, pitch and roll their slopes. */
-void boat_pose_at(struct boat *b, const struct swell_tables *t, int detile, double t_s);
+/* Its program (glapp.h; swell_tier: the ocean's, for the shader labels) and mesh. */
+int  boat_create(const struct boat_desc *d, int swell_tier, struct boat **out,
+                 struct swell_err *err);
+/* Its pose at t_s on the sea (detile as the ocean draws it, swell_ocean_stats): the water
+ * under its bow, stern and both sides at mid-length by swell_sea_sample, low-passed to waves
+ * longer than the hull; heave the mean, pitch and roll their slopes. */
+int  boat_pose_at(struct boat *b, const swell_sea *sea, int detile, double t_s,
+                  struct swell_err *err);
 const struct boat_pose *boat_pose(const struct boat *b);
 const struct boat_desc *boat_get_desc(const struct boat *b);
 /* Draw it with a view (world-to-eye rotation, column-major) and projection relative to the eye

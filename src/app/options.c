@@ -8,16 +8,19 @@
 
 #include "app/options.h"
 #include "core/args.h"
-#include "core/datadir.h"
 #include "core/parse.h"
-#include "core/preset.h"
-#include "geometry/detile.h"
-#include "geometry/grid.h"
-#include "gl/gpu.h"
 #include "platform/input.h"
-#include "render/renderer.h"
-#include "render/upscale.h"
 #include "swell.h"
+
+/* The names of swell.h's enums on the command line, indexed by value. */
+static const char *const quality_names[] = { "high", "low" };
+static const char *const geometry_names[] = { "grid", "patches" };
+static const char *const detile_names[] = { "auto", "on", "off" };
+static const char *const tier_names[] = { "best", "gles2-min", "gles2-ext", "gles3" };
+#define COUNT(t) (int)(sizeof t / sizeof t[0])
+
+const char *options_quality_name(int q) { return name_of(quality_names, COUNT(quality_names), q); }
+const char *options_geometry_name(int g) { return name_of(geometry_names, COUNT(geometry_names), g); }
 
 static void usage(FILE *f)
 {
@@ -92,8 +95,33 @@ static void usage(FILE *f)
 "  --version         print the version\n"
 "\n"
 "Exit status: 0 success, 1 runtime failure, 2 usage error.\n\n",
-            seastate_option("--wind")->lo, seastate_option("--wind")->hi);
-    data_dir_usage(f);
+            SWELL_WIND_SPEED_MIN_MPS, SWELL_WIND_SPEED_MAX_MPS);
+    size_t n = swell_sea_usage(SWELL_USAGE_DATA, NULL, 0);
+    char *text = malloc(n + 1);
+    if (text) {
+        swell_sea_usage(SWELL_USAGE_DATA, text, n + 1);
+        fputs(text, f);
+        free(text);
+    }
+}
+
+/* A --preset or --wind for the sea baked in memory: kept as swell_sea_desc options and checked
+ * with those before it as the bake will apply them (a budget it cannot fit is the bake's to
+ * say, at run time). */
+static int sea_option(struct options *o, const char *name, const char *value,
+                      struct swell_err *err)
+{
+    if (o->sea_count >= OPTIONS_SEA_MAX)
+        return swell_fail(err, SWELL_E_ARG, "%s: more than %d --preset and --wind options",
+                          name, OPTIONS_SEA_MAX);
+    o->baking = 1;
+    o->sea[2 * o->sea_count] = name;
+    o->sea[2 * o->sea_count + 1] = value;
+    o->sea_count++;
+    o->sea[2 * o->sea_count] = NULL;
+    swell_sea_desc d = { .options = o->sea };
+    int rc = swell_sea_check(&d, err);
+    return rc == SWELL_E_BUDGET ? SWELL_OK : rc;
 }
 
 /* The --out text: plain, or exactly one %d conversion with optional 0 flag and width; "%%" is a
@@ -195,16 +223,10 @@ int options_parse(int argc, char **argv, struct options *o)
             o->tables_dir = v;
             if (!v[0])
                 r = swell_fail(&err, SWELL_E_ARG, "--tables: empty directory name");
-        } else if (!strcmp(a, "--preset")) {
-            o->baking = 1;
-            r = preset_load(v, &o->state, &err);
-        } else if (!strcmp(a, "--wind")) {
-            o->baking = 1;
-            r = seastate_set_option(&o->state, seastate_option(a), v, &err);
+        } else if (!strcmp(a, "--preset") || !strcmp(a, "--wind")) {
+            r = sea_option(o, a, v, &err);
         } else if (!strcmp(a, "--budget")) {
-            struct seastate b = { 0 };
-            r = seastate_set_option(&b, seastate_option(a), v, &err);
-            o->budget = b.budget_bytes;
+            r = parse_budget(a, v, &o->budget, &err);
         } else if (!strcmp(a, "--sun")) {
             double s[2];
             r = parse_doubles(a, v, 2, -360, 360, s, &err);
@@ -240,15 +262,15 @@ int options_parse(int argc, char **argv, struct options *o)
                 r = swell_fail(&err, SWELL_E_ARG, "--path: '%s' is not surface, 1km, 10km or orbit",
                                v);
         } else if (!strcmp(a, "--quality")) {
-            o->quality = render_quality_from_name(v);
+            o->quality = parse_name(quality_names, 0, COUNT(quality_names), v);
             if (o->quality < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--quality: '%s' is not low or high", v);
         } else if (!strcmp(a, "--geometry")) {
-            o->geometry = geometry_kind_from_name(v);
+            o->geometry = parse_name(geometry_names, 0, COUNT(geometry_names), v);
             if (o->geometry < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--geometry: '%s' is not grid or patches", v);
         } else if (!strcmp(a, "--tier")) {
-            o->tier = gpu_tier_from_name(v);
+            o->tier = parse_name(tier_names, SWELL_TIER_GLES2_MIN, COUNT(tier_names), v);
             if (o->tier < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--tier: '%s' is not gles2-min, gles2-ext or "
                                "gles3", v);
@@ -258,11 +280,11 @@ int options_parse(int argc, char **argv, struct options *o)
             else
                 r = swell_fail(&err, SWELL_E_ARG, "--lod: '%s' is not auto or pixel", v);
         } else if (!strcmp(a, "--detile")) {
-            o->detile = detile_mode_from_name(v);
+            o->detile = parse_name(detile_names, 0, COUNT(detile_names), v);
             if (o->detile < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--detile: '%s' is not auto, on or off", v);
         } else if (!strcmp(a, "--scale")) {
-            r = parse_double(a, v, UPSCALE_MIN, UPSCALE_MAX, "x the output's size",
+            r = parse_double(a, v, SWELL_UPSCALE_MIN, SWELL_UPSCALE_MAX, "x the output's size",
                              &o->scale, &err);
         } else if (!strcmp(a, "--device")) {
             o->platform.device = v;

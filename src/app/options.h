@@ -5,11 +5,12 @@
 
 #include <stdint.h>
 #include "core/camera.h"
-#include "core/seastate.h"
 #include "platform/platform.h"
+#include "swell.h"
 
 #define DEFAULT_FPS 30.0
 #define MAX_PATH_LEN 4096
+#define OPTIONS_SEA_MAX 64      /* --preset and --wind options at most */
 
 struct options {
     struct platform_desc platform;
@@ -20,17 +21,20 @@ struct options {
     const char *out;            /* PNG path or printf pattern with one %d */
     const char *tables_dir;
     int baking;                 /* a --preset or --wind was given */
-    struct seastate state;
+    const char *sea[2 * OPTIONS_SEA_MAX + 1];  /* those, as name and value pairs ending in NULL
+                                 * (swell_sea_desc options), in the order given */
+    int sea_count;              /* pairs in sea */
     uint64_t budget;            /* 0 = the tables' own */
     float sun_elev_deg, sun_azim_deg;
     int camera_given, path;
     struct camera camera;
-    int quality, geometry, tier;
+    int quality, geometry;      /* enum swell_quality, swell_geometry */
+    int tier;                   /* enum swell_tier: SWELL_TIER_BEST unless --tier forces one */
     int pixel_lod;              /* --lod pixel */
     int debug_uncovered;        /* --debug uncovered */
     int debug_variants;         /* --debug variants */
-    int detile;                 /* --detile: enum detile_mode */
-    double scale;               /* --scale: render scale (upscale.h); 0 = 1 */
+    int detile;                 /* --detile: enum swell_detile */
+    double scale;               /* --scale: render scale (swell_upscale); 0 = 1 */
     int verbose;
     int bench;                  /* --bench: time frames against the baseline quad */
     int warmup;                 /* --warmup: untimed bench frames; -1 = default */
@@ -42,6 +46,10 @@ struct options {
 
 /* --out's text: -1 when not a file name or a pattern with one %d, else its %d count (0, 1). */
 int options_out_conversions(const char *s);
+
+/* The command line's names of a quality and a geometry ("high", "grid"). */
+const char *options_quality_name(int quality);
+const char *options_geometry_name(int geometry);
 
 /* Fill o from argv: 0, 2 for a usage error (printed), or exit(0) after --help or --version. */
 int options_parse(int argc, char **argv, struct options *o);

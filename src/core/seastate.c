@@ -36,8 +36,8 @@ void seastate_resolve(struct seastate *s)
 #define F(key, opt, arg, type, lo, hi, unit, flags, zero, help, dflt) \
     { #key, opt, arg, type, offsetof(struct seastate, key), lo, hi, unit, flags, zero, help, dflt }
 const struct seastate_field seastate_fields[] = {
-    F(wind_speed_mps, "--wind", "U", SS_FLOAT, 0.5, 40, "m/s", 0, NULL,
-      "wind speed U10 at 10 m, m/s", "10"),
+    F(wind_speed_mps, "--wind", "U", SS_FLOAT, SWELL_WIND_SPEED_MIN_MPS,
+      SWELL_WIND_SPEED_MAX_MPS, "m/s", 0, NULL, "wind speed U10 at 10 m, m/s", "10"),
     F(wind_dir_deg, "--wind-dir", "DEG", SS_FLOAT, -360, 360, "deg", 0, NULL,
       "direction the wind blows towards, deg CCW from east", "0"),
     F(fetch_km, "--fetch", "KM", SS_FLOAT, 0.1, 10000, "km", 0, NULL,

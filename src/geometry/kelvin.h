@@ -30,7 +30,7 @@
 
 #define KELVIN_HALF_ANGLE_DEG 19.4712206   /* asin(1/3) */
 #define KELVIN_HEIGHT_COEF 0.2
-#define KELVIN_MIN_SPEED_MPS 0.5
+#define KELVIN_MIN_SPEED_MPS SWELL_WAKE_SPEED_MIN_MPS   /* swell.h */
 #define KELVIN_MAX_SPEED_MPS 30.0
 
 struct kelvin_desc {

@@ -26,9 +26,9 @@ static void draw_stretch(struct upscale *u, int w, int h)
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glUseProgram(u->prog.program);
-    glActiveTexture(GL_TEXTURE0);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)u->unit);
     glBindTexture(GL_TEXTURE_2D, u->tex);
-    glUniform1i(u->u_frame, 0);
+    glUniform1i(u->u_frame, u->unit);
     glBindBuffer(GL_ARRAY_BUFFER, u->vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);

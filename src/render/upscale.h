@@ -25,6 +25,7 @@ struct upscale {
     struct shader_program prog;
     GLint u_frame;
     GLint target;               /* the output framebuffer bound when the frame began */
+    int unit;                   /* the texture unit the stretch binds (0; set after create) */
 };
 
 /* The scaled size of an output side: round(out x scale), at least 1. */

@@ -1,5 +1,6 @@
-/* test_bench_run.c - `swell --bench` end to end on EGL surfaceless: bench_run over a real renderer
- * fills consistent statistics, leaves the renderer's GPU accounting untouched (the baseline's
+/* test_bench_run.c - `swell --bench` end to end on EGL surfaceless: bench_run over a real ocean
+ * (swell.h, as swell.c draws it) fills consistent statistics, leaves the ocean's GPU accounting
+ * untouched (the baseline's
  * objects are its own and freed), and the baseline quad really samples its noise texture (the
  * read-back of its last frame: no clear colour, varied texels, mean near the texture's 127.5).
  * Exit 77 (skip) only when no EGL device exists and CI is not "true" (STYLE.md 12).
@@ -13,12 +14,10 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "bake/bake.h"
+#include "swell.h"
 #include "app/bench.h"
-#include "gl/gpu.h"
+#include "core/camera.h"
 #include "platform/platform.h"
-#include "render/renderer.h"
-#include "tables/tables.h"
 
 #define W 160
 #define H 90
@@ -26,28 +25,36 @@
 
 static struct platform_handle ph;
 
+/* A frame as swell.c's, without the view's refinements: the camera's matrices, the sea. */
+static int frame(void *ctx, const struct camera *cam, double t, struct swell_err *err)
+{
+    struct camera_frame cf;
+    camera_frame_make(cam, W, H, &cf);
+    swell_view v = { .viewport = { 0, 0, W, H }, .flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY };
+    memcpy(v.camera_pos, cam->pos, sizeof v.camera_pos);
+    memcpy(v.view, cf.view_rel, sizeof v.view);
+    memcpy(v.proj, cf.proj, sizeof v.proj);
+    return swell_ocean_draw(ctx, &v, t, err);
+}
+
 static void test_bench_run(void **state)
 {
     (void)state;
     struct swell_err err = { 0 };
-    struct seastate ss;
-    memset(&ss, 0, sizeof ss);
-    ss.budget_bytes = 4u << 20;     /* the tiny preset: quickest bake */
-    struct swell_tables t;
-    assert_int_equal(swell_bake(&ss, NULL, &t, &err), 0);
-    struct gpu g;
-    memset(&g, 0, sizeof g);
-    assert_int_equal(gpu_init(&g, TIER_GLES2_MIN, t.state.budget_bytes, &err), 0);
-    struct renderer_desc rd = { .tables = &t, .gpu = &g, .quality = QUALITY_LOW,
-                                .debug_uncovered = 1 };
-    struct renderer *r = NULL;
-    if (renderer_create(&rd, &r, &err))
-        fail_msg("renderer_create: %s", err.msg);
-    uint64_t bytes_before = g.bytes;
+    swell_sea_desc sd = { .budget_bytes = 4u << 20 };     /* the tiny preset: quickest bake */
+    swell_sea *sea = NULL;
+    assert_int_equal(swell_sea_bake(&sd, &sea, &err), 0);
+    swell_ocean_desc od = { .quality = SWELL_QUALITY_LOW, .tier = SWELL_TIER_GLES2_MIN };
+    swell_ocean *ocean = NULL;
+    if (swell_ocean_create(sea, &od, &ocean, &err))
+        fail_msg("swell_ocean_create: %s", err.msg);
+    swell_ocean_stats before, after;
+    swell_ocean_get_stats(ocean, &before);
 
     struct bench_desc bd = {
-        .ph = &ph, .renderer = r, .gpu = &g, .path = CAMERA_PATH_1KM, .frames = FRAMES,
+        .ph = &ph, .frame = frame, .ctx = ocean, .path = CAMERA_PATH_1KM, .frames = FRAMES,
         .warmup = 1, .scene = "test", .quality = "low", .geometry = "grid",
+        .swell_tier = before.tier,
     };
     camera_defaults(&bd.camera);
     struct bench_result res;
@@ -69,9 +76,9 @@ static void test_bench_run(void **state)
     assert_string_equal(res.platform, "surfaceless");
     assert_true(strlen(res.gl_renderer) > 0);
     assert_true(res.cpu_valid || strstr(res.notes, "perf_event_open") != NULL);
-    /* the baseline is accounted on its own record and gone afterwards */
-    assert_true(g.bytes == bytes_before);
-    assert_true(res.bytes_gpu == bytes_before);
+    /* the baseline is the benchmark's own: nothing charged to the ocean's budget */
+    swell_ocean_get_stats(ocean, &after);
+    assert_true(after.gpu_bytes_charged == before.gpu_bytes_charged && before.gpu_bytes > 0);
 
     /* The last frame drawn is the baseline quad: the hash-noise texture, trilinear-filtered. */
     uint8_t *rgba = malloc((size_t)W * H * 4);
@@ -97,9 +104,8 @@ static void test_bench_run(void **state)
     assert_true(n > 0 && (size_t)n < sizeof json);
     assert_non_null(strstr(json, "\"frames\": 5,"));
     free(rgba);
-    renderer_destroy(r);
-    gpu_shutdown(&g);
-    tables_destroy(&t);
+    swell_ocean_destroy(ocean);
+    swell_sea_destroy(sea);
 }
 
 int main(void)

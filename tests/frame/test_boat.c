@@ -20,9 +20,8 @@
 
 #include <cmocka.h>
 
+#include "api/api.h"
 #include "app/boat.h"
-#include "bake/bake.h"
-#include "core/preset.h"
 #include "frame/frame_util.h"
 #include "geometry/sea.h"
 
@@ -31,7 +30,7 @@
 #define HEADING 30.0
 
 static struct platform_handle g_ph;
-static struct swell_tables g_t;
+static swell_sea *g_sea;        /* its tables: g_sea->tables (api/api.h) */
 static struct gpu g_gpu;
 static struct renderer *g_r;
 static struct boat *g_boat;
@@ -40,18 +39,18 @@ static uint8_t g_img[3][W * H * 4];
 static int setup(void **state)
 {
     (void)state;
-    struct seastate ss = { 0 };
     struct swell_err err = { 0 };
-    if (preset_load("moderate", &ss, &err) || swell_bake(&ss, NULL, &g_t, &err) ||
+    swell_sea_desc sd = { .preset = "moderate" };
+    if (swell_sea_bake(&sd, &g_sea, &err) ||
         gpu_init(&g_gpu, TIER_GLES2_MIN, 0, &err)) {
         fprintf(stderr, "test_boat: %s\n", err.msg);
         return -1;
     }
-    struct renderer_desc d = { .tables = &g_t, .gpu = &g_gpu, .sun_elev_deg = 35.0f,
+    struct renderer_desc d = { .tables = &g_sea->tables, .gpu = &g_gpu, .sun_elev_deg = 35.0f,
                                .sun_azim_deg = 120.0f, .reflections = 1, .wakes = 1,
                                .shadows = 1, .refractions = 1 };
     struct boat_desc bd = { .x0 = 30.0, .y0 = 0.0, .heading_deg = (float)HEADING };
-    if (renderer_create(&d, &g_r, &err) || boat_create(&bd, NULL, &g_gpu.caps, &g_boat, &err)) {
+    if (renderer_create(&d, &g_r, &err) || boat_create(&bd, SWELL_TIER_GLES2_MIN, &g_boat, &err)) {
         fprintf(stderr, "test_boat: %s\n", err.msg);
         return -1;
     }
@@ -64,7 +63,7 @@ static int teardown(void **state)
     boat_destroy(g_boat);
     renderer_destroy(g_r);
     gpu_shutdown(&g_gpu);
-    tables_destroy(&g_t);
+    swell_sea_destroy(g_sea);
     return 0;
 }
 
@@ -89,15 +88,15 @@ static void test_floats_on_the_query(void **state)
     enum { N = 120 };
     double heave[N], sea_h[N], pitch[N], sea_slope[N];
     struct sea_query q;
-    sea_query_init(&g_t, renderer_detile(g_r), BOAT_LENGTH_M, &q);
+    sea_query_init(&g_sea->tables, renderer_detile(g_r), BOAT_LENGTH_M, &q);
     double hd = HEADING * M_PI / 180.0, fwd[2] = { cos(hd), sin(hd) };
     double var = 0.0, err2 = 0.0;
     for (int i = 0; i < N; i++) {
-        double t = g_t.loop_period_s * i / N;
-        boat_pose_at(g_boat, &g_t, renderer_detile(g_r), t);
+        double t = g_sea->tables.loop_period_s * i / N;
+        assert_int_equal(boat_pose_at(g_boat, g_sea, renderer_detile(g_r), t, NULL), 0);
         const struct boat_pose *p = boat_pose(g_boat);
         struct sea_point sp;
-        sea_query_point(&g_t, &q, 30.0, 0.0, t, &sp);
+        sea_query_point(&g_sea->tables, &q, 30.0, 0.0, t, &sp);
         heave[i] = p->pos[2];
         sea_h[i] = sp.height;
         pitch[i] = p->pitch_deg * M_PI / 180.0;
@@ -114,7 +113,7 @@ static void test_floats_on_the_query(void **state)
     double ch = corr(heave, sea_h, N), cp = corr(pitch, sea_slope, N);
     printf("over a loop of %.1f s: the sea's height at the boat's middle varies by %.3f m rms; "
            "heave differs from it by %.3f m rms, correlation %.3f; pitch vs the slope along the "
-           "hull: correlation %.3f\n", g_t.loop_period_s, sqrt(var), sqrt(err2), ch, cp);
+           "hull: correlation %.3f\n", g_sea->tables.loop_period_s, sqrt(var), sqrt(err2), ch, cp);
     assert_true(sqrt(var) > 0.05);
     assert_true(sqrt(err2) < 0.1 * sqrt(var) + 0.01);
     assert_true(ch > 0.9 && cp > 0.8);
@@ -130,7 +129,7 @@ static void boat_frame(double t, uint8_t *img)
                      (float)(cos(35 * M_PI / 180) * sin(120 * M_PI / 180)),
                      (float)sin(35 * M_PI / 180) };
     renderer_frame_view(g_r, &cam, W, H, &v);
-    boat_pose_at(g_boat, &g_t, renderer_detile(g_r), t);
+    assert_int_equal(boat_pose_at(g_boat, g_sea, renderer_detile(g_r), t, NULL), 0);
     const struct boat_pose *p = boat_pose(g_boat);
     struct renderer_pass pass;
     struct renderer_reflection rr = { .distance_m = 30.0f };
@@ -182,7 +181,7 @@ static int max_diff(const uint8_t *a, const uint8_t *b, int *count)
 static void test_loop_at_rest(void **state)
 {
     (void)state;
-    double t = 2.0, T = g_t.loop_period_s;
+    double t = 2.0, T = g_sea->tables.loop_period_s;
     boat_frame(t, g_img[0]);
     boat_frame(t + T, g_img[1]);
     boat_frame(t + T / 3.0, g_img[2]);
