@@ -328,8 +328,8 @@ typedef struct swell_pass {
 
 /* Begin drawing the application's objects into the reflection map of the next
  * swell_ocean_draw (an ocean created with reflections = 1). view is the one that draw will
- * take; desc (may be NULL: defaults) says where the objects are. swell binds its reflection target (its own framebuffer of about half the viewport's
- * size, a power of two), sets the viewport, clears colour to 0 and depth to 1, and sets the
+ * take; desc (may be NULL: defaults) says where the objects are. swell binds its reflection
+ * target (its own framebuffer of about half the viewport's size, a power of two), sets the viewport, clears colour to 0 and depth to 1, and sets the
  * front face to clockwise (the mirror turns every triangle's winding: culling keeps working).
  * Draw the objects that stand above the water with the pass's matrices, writing their colour
  * as you draw it to the screen (linear radiance with linear_output) and alpha 1; what is left

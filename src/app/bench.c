@@ -225,7 +225,7 @@ static void copy_label(char *dst, size_t cap, const char *src)
 
 /* One whole frame: bind the target, draw, present, glFinish (so the GPU work is inside the
  * time even where present only flushes). Returns ms; *instr gets the counted instructions of
- * renderer_frame when a counter is given. */
+ * the frame callback when a counter is given. */
 static int scene_frame(const struct bench_desc *d, struct bench_counter *c, double t, int w,
                        int h, double *ms, uint64_t *instr, struct swell_err *err)
 {

@@ -2,9 +2,9 @@
  * (issue 5 "Benchmarks", glmark2-style), CPU instructions per frame, results as JSON.
  *
  * Method (../shared/notes/llvmpipe.md): every timed frame is a whole frame, begin_frame ->
- * renderer_frame -> present -> glFinish, timed on CLOCK_MONOTONIC; the baseline is one
- * fullscreen quad sampling a 512x512 RGBA8 mipmapped texture, trilinear, one draw per glFinish,
- * timed the same way on the same platform, size and context. Scene and baseline frames are
+ * the application's frame (bench_desc frame) -> present -> glFinish, timed on CLOCK_MONOTONIC;
+ * the baseline is one fullscreen quad sampling a 512x512 RGBA8 mipmapped texture, trilinear,
+ * one draw per glFinish, timed the same way on the same platform, size and context. Scene and baseline frames are
  * interleaved (scene i, quad i, scene i+1, ...) so load from other processes hits both alike
  * and the ratio stays meaningful on a shared machine. Anisotropic filtering is never enabled.
  */

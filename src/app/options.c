@@ -1,5 +1,6 @@
-/* options.c - swell's command line (options.h): each option parsed by core/parse.h and
- * core/seastate.h, the combinations that cannot work refused with what to do instead. */
+/* options.c - swell's command line (options.h): each option parsed by core/parse.h, the sea's
+ * checked by swell_sea_check (swell.h), the combinations that cannot work refused with what to
+ * do instead. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,8 +20,15 @@ static const char *const detile_names[] = { "auto", "on", "off" };
 static const char *const tier_names[] = { "best", "gles2-min", "gles2-ext", "gles3" };
 #define COUNT(t) (int)(sizeof t / sizeof t[0])
 
-const char *options_quality_name(int q) { return name_of(quality_names, COUNT(quality_names), q); }
-const char *options_geometry_name(int g) { return name_of(geometry_names, COUNT(geometry_names), g); }
+const char *options_quality_name(int q)
+{
+    return name_of(quality_names, COUNT(quality_names), q);
+}
+
+const char *options_geometry_name(int g)
+{
+    return name_of(geometry_names, COUNT(geometry_names), g);
+}
 
 static void usage(FILE *f)
 {

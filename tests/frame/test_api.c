@@ -13,6 +13,8 @@
  *   bit for bit; the GL state glstate.h lists is as the application left it.
  * - Off-axis projections (glFrustum's): each half of a view drawn alone covers every pixel and
  *   draws what the whole view draws there; projections the grid cannot cover are refused.
+ * - What the swell program asks besides: stats, description, the debug frame's programs, the
+ *   render scale (swell_upscale) covering the output and charged to the ocean.
  * Exit 77 (skip) only without an EGL device and CI unset (frame_util.h).
  */
 #include <math.h>
@@ -32,6 +34,7 @@
 #include "geometry/sea.h"
 #include "optics/tonemap.h"
 #include "api/api.h"
+#include "core/camera.h"
 #include "core/image.h"
 #include "swell.h"
 
@@ -593,6 +596,137 @@ static void test_off_axis(void **state)
     swell_ocean_destroy(o);
 }
 
+/* What the program (swell.c) asks of an ocean beyond drawing it: its stats, its description,
+ * the fallbacks told to a note callback, the debug frame's programs, and the render scale. */
+static int g_notes;
+static void count_note(void *user, const char *msg)
+{
+    (void)user;
+    assert_true(msg && msg[0]);
+    g_notes++;
+}
+
+/* An RGBA8 target (a texture: GLES 2 core) with 16-bit depth: the debug colours exactly. */
+static GLuint rgba8_framebuffer(void)
+{
+    GLuint fbo, tex, depth;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, W, H);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
+}
+
+static void test_stats_programs_upscale(void **state)
+{
+    (void)state;
+    struct swell_err err = { 0 };
+    GLuint fbo8 = rgba8_framebuffer();
+    assert_true(fbo8 != 0);
+    swell_ocean_desc od = { .tier = SWELL_TIER_GLES2_MIN, .debug_programs = 1,
+                            .note = count_note };
+    swell_ocean *o = NULL;
+    assert_int_equal(swell_ocean_create(g_sea, &od, &o, &err), 0);
+    swell_ocean_stats st;
+    swell_ocean_get_stats(o, &st);
+    printf("stats: tier %d of %d, quality %d, detile %d, objects %d, %llu bytes (%llu charged) "
+           "of %llu, %d vertices, %d triangles, %d notes\n", st.tier, st.tier_available,
+           st.quality, st.detile, st.objects, (unsigned long long)st.gpu_bytes,
+           (unsigned long long)st.gpu_bytes_charged, (unsigned long long)st.budget_bytes,
+           st.vertices, st.triangles, g_notes);
+    assert_int_equal(st.tier, SWELL_TIER_GLES2_MIN);
+    assert_true(st.tier_available >= SWELL_TIER_GLES2_MIN && st.quality == SWELL_QUALITY_HIGH);
+    assert_true(st.detile == 1 && st.objects == 0);
+    assert_true(st.gpu_bytes > 0 && st.gpu_bytes <= st.gpu_bytes_charged &&
+                st.gpu_bytes_charged <= st.budget_bytes && st.budget_bytes == (4u << 20));
+    assert_true(st.vertices > 0 && st.triangles > 0 && st.cpu_bytes_per_frame > 0);
+    char text[4096];
+    size_t n = swell_ocean_describe(o, text, sizeof text);
+    assert_true(n > 0 && n == strlen(text) && strstr(text, "tier: gles2-min") != NULL);
+    char small[8];
+    assert_int_equal(swell_ocean_describe(o, small, sizeof small), n);   /* snprintf's contract */
+    assert_int_equal(strlen(small), sizeof small - 1);
+
+    /* the debug frame: every pixel the sky (white) or a named ocean program, few mixed; the
+     * horizon in view (a camera 12 m up looking 5 deg down, core/camera.h's matrices) */
+    struct camera cam = { .pos = { 0.0, 0.0, EYE_Z }, .pitch_deg = -5.0f };
+    struct camera_frame cf;
+    camera_frame_make(&cam, W, H, &cf);
+    swell_view v = { .camera_pos = { 0.0, 0.0, EYE_Z }, .viewport = { 0, 0, W, H },
+                     .flags = SWELL_DRAW_CLEAR };
+    memcpy(v.view, cf.view_rel, sizeof v.view);
+    memcpy(v.proj, cf.proj, sizeof v.proj);
+    float mvp[16];
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo8);
+    assert_int_equal(swell_ocean_draw(o, &v, 2.0, &err), 0);
+    static uint8_t px[W * H * 4];
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    int sky = 0, sea = 0, mixed = 0;
+    for (int i = 0; i < W * H; i++) {
+        char name[64];
+        int k = swell_ocean_program_at(o, px + 4 * i, name, sizeof name);
+        if (k == SWELL_PIXEL_SKY) {
+            sky++;
+        } else if (k == SWELL_PIXEL_MIXED) {
+            mixed++;
+        } else {
+            assert_true(k >= 0 && strncmp(name, "ocean k=", 8) == 0);
+            sea++;
+        }
+    }
+    printf("debug programs: sea %d, sky %d, mixed %d pixels of %d\n", sea, sky, mixed, W * H);
+    assert_true(sea > W * H / 2 && sky > 0 && mixed < W * H / 50);
+    swell_ocean_destroy(o);
+
+    /* the render scale: half the size, charged to the ocean, the output covered after the
+     * stretch and the viewport whole again */
+    od.debug_programs = 0;
+    assert_int_equal(swell_ocean_create(g_sea, &od, &o, &err), 0);
+    swell_ocean_get_stats(o, &st);
+    uint64_t charged = st.gpu_bytes_charged;
+    swell_upscale *up = NULL;
+    assert_int_equal(swell_upscale_create(o, W, H, 0.1, 16, &up, &err), SWELL_E_ARG);
+    assert_null(up);
+    assert_int_equal(swell_upscale_create(o, W, H, 0.5, 16, &up, &err), 0);
+    swell_ocean_get_stats(o, &st);
+    assert_true(st.gpu_bytes_charged > charged);
+    int uw, uh;
+    swell_upscale_size(up, &uw, &uh);
+    assert_true(uw == W / 2 && uh == H / 2);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo8);
+    glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    swell_upscale_begin(up);
+    app_view(&v, mvp, 0.0);
+    v.viewport[2] = uw;
+    v.viewport[3] = uh;
+    v.flags = SWELL_DRAW_CLEAR | SWELL_DRAW_SKY;
+    assert_int_equal(swell_ocean_draw(o, &v, 2.0, &err), 0);
+    assert_int_equal(swell_upscale_end(up, &err), 0);
+    GLint fb = -1, vp[4];
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fb);
+    glGetIntegerv(GL_VIEWPORT, vp);
+    assert_int_equal(fb, (GLint)fbo8);
+    assert_true(vp[0] == 0 && vp[1] == 0 && vp[2] == W && vp[3] == H);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    int magenta = 0;
+    for (int i = 0; i < W * H; i++)
+        magenta += px[4 * i] == 255 && px[4 * i + 1] == 0 && px[4 * i + 2] == 255;
+    printf("upscale 0.5: %dx%d stretched over %dx%d, %d uncovered\n", uw, uh, W, H, magenta);
+    assert_int_equal(magenta, 0);
+    swell_upscale_destroy(up);
+    swell_ocean_destroy(o);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo8);
+}
+
 int main(void)
 {
     int rc = frame_open("test_api", W, H, &g_ph);
@@ -619,6 +753,7 @@ int main(void)
         cmocka_unit_test(test_texture_units),
         cmocka_unit_test(test_linear_output),
         cmocka_unit_test(test_off_axis),
+        cmocka_unit_test(test_stats_programs_upscale),
     };
     rc = cmocka_run_group_tests(tests, NULL, NULL);
     swell_sea_destroy(g_sea);
