@@ -25,7 +25,9 @@ int glapp_check(const char *what, struct swell_err *err)
                       e == GL_OUT_OF_MEMORY ? " (out of memory)" : "");
 }
 
-static char *info_log(GLuint obj, int is_program)
+/* SWELL_E_SHADER saying what failed with the driver's log of obj, which is deleted. */
+static int log_fail(GLuint obj, int is_program, const char *what, const char *path,
+                    struct swell_err *err)
 {
     GLint n = 0;
     if (is_program)
@@ -39,7 +41,14 @@ static char *info_log(GLuint obj, int is_program)
         else
             glGetShaderInfoLog(obj, n, NULL, log);
     }
-    return log;
+    int rc = swell_fail(err, SWELL_E_SHADER, "shader: %s %s failed: %s", what, path,
+                        log && log[0] ? log : "(no log)");
+    free(log);
+    if (is_program)
+        glDeleteProgram(obj);
+    else
+        glDeleteShader(obj);
+    return rc;
 }
 
 /* One stage: the file read whole, the prologue before it. */
@@ -63,14 +72,8 @@ static int compile(const char *dir, const char *file, GLenum stage, GLuint *out,
     free(text);
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char *log = info_log(sh, 0);
-        rc = swell_fail(err, SWELL_E_SHADER, "shader: compiling %s failed: %s", path,
-                        log && log[0] ? log : "(no log)");
-        free(log);
-        glDeleteShader(sh);
-        return rc;
-    }
+    if (!ok)
+        return log_fail(sh, 0, "compiling", path, err);
     *out = sh;
     return SWELL_OK;
 }
@@ -106,12 +109,9 @@ int glapp_program(const char *vs_file, const char *fs_file, const char *const *a
     GLint ok = 0;
     glGetProgramiv(prog, GL_LINK_STATUS, &ok);
     if (!ok) {
-        char *log = info_log(prog, 1);
-        rc = swell_fail(err, SWELL_E_SHADER, "shader: linking %s/%s + %s failed: %s", dir,
-                        vs_file, fs_file, log && log[0] ? log : "(no log)");
-        free(log);
-        glDeleteProgram(prog);
-        return rc;
+        char what[4096 + 80];
+        snprintf(what, sizeof what, "%s/%s + %s", dir, vs_file, fs_file);
+        return log_fail(prog, 1, "linking", what, err);
     }
     if ((rc = glapp_check("shader: after linking", err))) {
         glDeleteProgram(prog);

@@ -67,6 +67,27 @@ static inline GLuint frame_app_framebuffer(int w, int h)
     return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
 }
 
+/* An RGBA8 target (a GL_RGBA texture: renders on every GPU swell targets, GLES 2 core) with
+ * 16-bit depth, bound; 0 when incomplete. Where exact colours or faint tails matter, not the
+ * RGBA4 application framebuffer above. Its texture and depth buffer live as long as the test's
+ * context. */
+static inline GLuint frame_rgba8_framebuffer(int w, int h)
+{
+    GLuint fbo, tex, depth;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
+}
+
 /* An application's program from its two sources, a_pos at attribute 0; 0 when it does not
  * link. */
 static inline GLuint frame_program(const char *vs, const char *fs)

@@ -606,29 +606,11 @@ static void count_note(void *user, const char *msg)
     g_notes++;
 }
 
-/* An RGBA8 target (a texture: GLES 2 core) with 16-bit depth: the debug colours exactly. */
-static GLuint rgba8_framebuffer(void)
-{
-    GLuint fbo, tex, depth;
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-    glGenRenderbuffers(1, &depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, W, H);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
-}
-
 static void test_stats_programs_upscale(void **state)
 {
     (void)state;
     struct swell_err err = { 0 };
-    GLuint fbo8 = rgba8_framebuffer();
+    GLuint fbo8 = frame_rgba8_framebuffer(W, H);   /* the debug colours exactly */
     assert_true(fbo8 != 0);
     swell_ocean_desc od = { .tier = SWELL_TIER_GLES2_MIN, .debug_programs = 1,
                             .note = count_note };

@@ -416,19 +416,8 @@ static void test_blur_width(void **state)
     (void)state;
     /* an RGBA8 target (GL_RGBA textures render on every GPU swell targets), not the RGBA4
      * application framebuffer of the other tests: the blur's tails are faint */
-    GLuint tex, fbo, depth;
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-    glGenRenderbuffers(1, &depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, W, H);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    assert_int_equal(glCheckFramebufferStatus(GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
+    GLuint fbo = frame_rgba8_framebuffer(W, H);
+    assert_true(fbo != 0);
     static const float winds[2] = { 3.0f, 8.0f };
     for (int i = 0; i < 2; i++) {
         double across, along;
@@ -440,8 +429,6 @@ static void test_blur_width(void **state)
         }
     }
     glDeleteFramebuffers(1, &fbo);
-    glDeleteRenderbuffers(1, &depth);
-    glDeleteTextures(1, &tex);
 }
 
 /* The sea at and beyond the objects reflects them as a flat mirror would: nothing of the
