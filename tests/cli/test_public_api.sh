@@ -6,7 +6,7 @@
 # (APP_HELPERS: arguments, numbers, camera matrices, PNG, files, errors, the data directory; no
 # ocean in them). Checked on each object's undefined symbols (nm -u) against the names the
 # internal archive defines; and the check is shown to fail on an object that calls an internal
-# function. The link itself enforces it too: the programs link libswell.a, whose other names
+# function. The link enforces it for swell too: it links libswell.a, whose other names
 # are local.
 set -u
 BUILD=${SWELL_BUILD:-build/rel}
