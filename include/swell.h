@@ -193,6 +193,9 @@ typedef struct swell_sample_desc {
     int no_detile;              /* 1: the patterns read once, at no offset, as an ocean made
                                  * with swell_ocean_desc detile SWELL_DETILE_OFF draws them
                                  * (the default, 0, matches the default high quality) */
+    int height_only;            /* 1: height_m and displacement alone (normal straight up,
+                                 * velocity 0), a fifth of the work: a hull's buoyancy points,
+                                 * a camera's height above the water */
 } swell_sample_desc;
 
 typedef struct swell_sample {

@@ -277,6 +277,7 @@ int swell_sea_sample(const swell_sea *sea, const swell_sample_desc *desc, const 
                           "must be finite, the wavelength >= 0", min_wl, t_s);
     struct sea_query q;
     sea_query_init(&sea->tables, !(desc && desc->no_detile), min_wl, &q);
+    q.height_only = desc && desc->height_only;
     for (size_t i = 0; i < n; i++) {
         double x = xy[2 * i], y = xy[2 * i + 1];
         if (!isfinite(x) || !isfinite(y))

@@ -170,7 +170,8 @@ int boat_pose_at(struct boat *b, const swell_sea *sea, int detile, double t_s,
         xy[2 * i + 1] = y + pts[i][0] * sh + pts[i][1] * ch;
     }
     /* the hull does not feel waves shorter than itself */
-    swell_sample_desc sd = { .min_wavelength_m = BOAT_LENGTH_M, .no_detile = !detile };
+    swell_sample_desc sd = { .min_wavelength_m = BOAT_LENGTH_M, .no_detile = !detile,
+                             .height_only = 1 };
     swell_sample s[4];
     int rc = swell_sea_sample(sea, &sd, xy, 4, t_s, s, err);
     if (rc)

@@ -139,7 +139,7 @@ static int make_view(struct app *app, const struct camera *cam, double t, int w,
 {
     struct camera c = *cam;
     c.fov_y_deg = camera_fov_covered(cam->fov_y_deg, h > 0 ? (float)w / (float)h : 1.0f);
-    swell_sample_desc sd = { .no_detile = !app->st.detile };
+    swell_sample_desc sd = { .no_detile = !app->st.detile, .height_only = 1 };
     swell_sample s;
     int rc = swell_sea_sample(app->sea, &sd, c.pos, 1, t, &s, err);
     if (rc)

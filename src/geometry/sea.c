@@ -109,6 +109,7 @@ void sea_query_init(const struct swell_tables *t, int detile, double min_wavelen
                     struct sea_query *q)
 {
     q->detile = detile;
+    q->height_only = 0;
     for (int i = 0; i < SWELL_MAX_PATTERNS; i++) {
         float lambda = i < t->patterns ? grid_band_wavelength(&t->pattern[i]) : 0.0f;
         q->weight[i] = min_wavelength_m > 0.0
@@ -124,8 +125,16 @@ void sea_query_point(const struct swell_tables *t, const struct sea_query *q, do
 {
     double p[2], dx0[3], dx1[3], dy0[3], dy1[3], h = INFINITY;
     invert(t, q->detile, q->weight, x, y, t_s, p);
-    displace(t, q->detile, q->weight, p[0], p[1], t_s, out->disp, out->velocity);
+    displace(t, q->detile, q->weight, p[0], p[1], t_s, out->disp,
+             q->height_only ? NULL : out->velocity);
     out->height = out->disp[2];
+    if (q->height_only) {
+        for (int c = 0; c < 3; c++) {
+            out->velocity[c] = 0.0;
+            out->normal[c] = c == 2;
+        }
+        return;
+    }
     for (int i = 0; i < t->patterns; i++) {
         const struct swell_table *tb = tables_find(t, TABLE_DISP, i);
         if (tb && tb->width > 0 && q->weight[i] > 0.0f)

@@ -28,6 +28,8 @@ double sea_surface_height(const struct swell_tables *t, int detile, double x, do
  * (1 for every pattern without a minimum), as the grid weighs what its cells cannot hold. */
 struct sea_query {
     int detile;
+    int height_only;            /* 1: sea_query_point fills height and disp alone (normal up,
+                                 * velocity 0): one displacement instead of five */
     float weight[SWELL_MAX_PATTERNS];
 };
 void sea_query_init(const struct swell_tables *t, int detile, double min_wavelength_m,

@@ -24,8 +24,14 @@ void gl_state_save(struct gl_state *s, int unit0, int units)
     glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &s->element_buffer);
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &s->framebuffer);
     glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
+    /* never past the device's units (Mali-450 and GC2000 have 8 or 16: glActiveTexture beyond
+     * them is GL_INVALID_ENUM, and the error would be the application's next check's) */
+    GLint max_units = 0;
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &max_units);
     s->unit0 = unit0;
     s->units = units < GL_STATE_UNITS ? units : GL_STATE_UNITS;
+    if (s->units > max_units - unit0)
+        s->units = max_units - unit0 > 0 ? max_units - unit0 : 0;
     for (int u = 0; u < s->units; u++) {
         glActiveTexture(GL_TEXTURE0 + (GLenum)(unit0 + u));
         glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->texture[u]);

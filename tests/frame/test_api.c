@@ -237,6 +237,16 @@ static void test_query_loop_and_low_pass(void **state)
            sqrt(var_lp / N), info.significant_height_m);
     assert_true(var_lp < var);
     assert_true(var_lp > 0.0);
+    /* height_only: the same height and displacement, the normal up, no velocity */
+    swell_sample_desc hod = { .height_only = 1 };
+    assert_int_equal(swell_sea_sample(g_sea, &hod, xy, N, t, b, &err), 0);
+    for (int i = 0; i < N; i++) {
+        assert_true(b[i].height_m == a[i].height_m);
+        assert_true(b[i].displacement[0] == a[i].displacement[0] &&
+                    b[i].displacement[1] == a[i].displacement[1]);
+        assert_true(b[i].normal[2] == 1.0f && b[i].normal[0] == 0.0f &&
+                    b[i].velocity[0] == 0.0f && b[i].velocity[2] == 0.0f);
+    }
     /* bad input: a precise error, nothing written */
     double bad[2] = { NAN, 0.0 };
     assert_int_equal(swell_sea_sample(g_sea, NULL, bad, 1, t, a, &err), SWELL_E_ARG);
