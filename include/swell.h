@@ -269,7 +269,8 @@ typedef struct swell_ocean_desc {
                                  * message per call, lines separated by '\n' */
     void *note_user;            /* note's first argument */
     int debug_programs;         /* 1: a diagnostic frame: every run of sea rows drawn in one
-                                 * flat colour naming its shader program (swell_ocean_program_at),
+                                 * flat colour naming its shader program (swell_ocean_program_at;
+                                 * read back from an RGBA8 target: fewer bits blur the colours),
                                  * the rest white, no sky; default 0 */
 } swell_ocean_desc;
 
