@@ -8,6 +8,10 @@
 #include "render/renderer.h"
 #include "tables/tables.h"
 
+/* text (len bytes) into buf as snprintf writes: at most cap bytes with the terminating 0 (buf
+ * may be NULL when cap is 0); returns len, the whole text's length. */
+size_t api_text_out(const char *text, size_t len, char *buf, size_t cap);
+
 struct swell_sea {
     struct swell_tables tables;
 };

@@ -322,13 +322,7 @@ size_t swell_ocean_describe(const swell_ocean *o, char *buf, size_t cap)
     text[0] = '\0';
     if (o)
         renderer_describe(o->renderer, text, sizeof text);
-    size_t len = strlen(text);
-    if (cap) {
-        size_t n = len < cap - 1 ? len : cap - 1;
-        memcpy(buf, text, n);
-        buf[n] = '\0';
-    }
-    return len;
+    return api_text_out(text, strlen(text), buf, cap);
 }
 
 _Static_assert((int)SWELL_PIXEL_SKY == (int)RENDERER_PIXEL_SKY &&

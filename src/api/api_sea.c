@@ -75,6 +75,16 @@ int swell_sea_bake(const swell_sea_desc *desc, swell_sea **out, struct swell_err
     return SWELL_OK;
 }
 
+size_t api_text_out(const char *text, size_t len, char *buf, size_t cap)
+{
+    if (cap) {
+        size_t n = len < cap - 1 ? len : cap - 1;
+        memcpy(buf, text, n);
+        buf[n] = '\0';
+    }
+    return len;
+}
+
 int swell_sea_check(const swell_sea_desc *desc, struct swell_err *err)
 {
     struct seastate s;
@@ -102,11 +112,7 @@ size_t swell_sea_usage(int what, char *buf, size_t cap)
     else
         seastate_usage(f, what == SWELL_USAGE_TABLES);
     fclose(f);
-    if (cap) {
-        size_t n = len < cap - 1 ? len : cap - 1;
-        memcpy(buf, text, n);
-        buf[n] = '\0';
-    }
+    api_text_out(text, len, buf, cap);
     free(text);
     return len;
 }
@@ -117,10 +123,11 @@ int swell_sea_load_budget(const char *dir, uint64_t budget_bytes, swell_sea **ou
     if (!out || !dir)
         return swell_fail(err, SWELL_E_ARG, "swell_sea_load: dir and out must not be NULL");
     *out = NULL;
-    if (budget_bytes && (budget_bytes < (1u << 20) || budget_bytes > (1u << 30)))
+    const struct seastate_field *bf = seastate_option("--budget");   /* its range, once */
+    if (budget_bytes && (budget_bytes < bf->lo || budget_bytes > bf->hi))
         return swell_fail(err, SWELL_E_ARG, "swell_sea_load_budget: budget %llu bytes is out "
-                          "of range (1 MiB to 1 GiB, or 0 for the set's own)",
-                          (unsigned long long)budget_bytes);
+                          "of range (%.0f to %.0f, or 0 for the set's own)",
+                          (unsigned long long)budget_bytes, bf->lo, bf->hi);
     swell_sea *sea = calloc(1, sizeof *sea);
     if (!sea)
         return swell_fail(err, SWELL_E_NOMEM, "swell_sea_load: no memory for a sea");

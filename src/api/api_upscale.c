@@ -21,9 +21,6 @@ int swell_upscale_create(swell_ocean *o, int out_w, int out_h, double scale, int
     if (out_w <= 0 || out_h <= 0 || out_w > 16384 || out_h > 16384)
         return swell_fail(err, SWELL_E_ARG, "swell_upscale_create: output %d x %d is not 1 to "
                           "16384 pixels a side", out_w, out_h);
-    if (!(scale >= SWELL_UPSCALE_MIN && scale <= SWELL_UPSCALE_MAX))
-        return swell_fail(err, SWELL_E_ARG, "swell_upscale_create: scale %g is out of range "
-                          "(%g to %g)", scale, SWELL_UPSCALE_MIN, SWELL_UPSCALE_MAX);
     swell_upscale *u = calloc(1, sizeof *u);
     if (!u)
         return swell_fail(err, SWELL_E_NOMEM, "swell_upscale_create: no memory");
@@ -31,14 +28,14 @@ int swell_upscale_create(swell_ocean *o, int out_w, int out_h, double scale, int
     struct gl_state st;
     gl_state_save(&st, o->unit0, 1);
     glActiveTexture(GL_TEXTURE0 + (GLenum)o->unit0);
-    int rc = upscale_create(&u->up, &o->gpu, out_w, out_h, scale, depth_bits,
+    int rc = upscale_create(&u->up, &o->gpu, o->unit0, out_w, out_h, scale, depth_bits,
                             o->shader_dir, err);
     gl_state_restore(&st);
     if (rc) {
+        swell_err_context(err, "swell_upscale_create");
         free(u);
         return rc;
     }
-    u->up.unit = o->unit0;
     *out = u;
     return SWELL_OK;
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "app/glapp.h"
 #include "app/options.h"
 #include "core/args.h"
 #include "core/parse.h"
@@ -17,7 +18,6 @@
 static const char *const quality_names[] = { "high", "low" };
 static const char *const geometry_names[] = { "grid", "patches" };
 static const char *const detile_names[] = { "auto", "on", "off" };
-static const char *const tier_names[] = { "best", "gles2-min", "gles2-ext", "gles3" };
 #define COUNT(t) (int)(sizeof t / sizeof t[0])
 
 const char *options_quality_name(int q)
@@ -278,7 +278,10 @@ int options_parse(int argc, char **argv, struct options *o)
             if (o->geometry < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--geometry: '%s' is not grid or patches", v);
         } else if (!strcmp(a, "--tier")) {
-            o->tier = parse_name(tier_names, SWELL_TIER_GLES2_MIN, COUNT(tier_names), v);
+            o->tier = -1;
+            for (int t = SWELL_TIER_GLES2_MIN; t <= SWELL_TIER_GLES3; t++)
+                if (!strcmp(v, glapp_tier_name(t)))
+                    o->tier = t;
             if (o->tier < 0)
                 r = swell_fail(&err, SWELL_E_ARG, "--tier: '%s' is not gles2-min, gles2-ext or "
                                "gles3", v);

@@ -68,12 +68,13 @@ static int probe(struct upscale *u, struct swell_err *err)
     return SWELL_OK;
 }
 
-int upscale_create(struct upscale *u, struct gpu *g, int out_w, int out_h, double scale,
+int upscale_create(struct upscale *u, struct gpu *g, int unit, int out_w, int out_h, double scale,
                    int depth_bits, const char *shader_dir, struct swell_err *err)
 {
     static const float ndc[8] = { -1, -1, 1, -1, -1, 1, 1, 1 };
     memset(u, 0, sizeof *u);
     u->gpu = g;
+    u->unit = unit;
     u->out_w = out_w;
     u->out_h = out_h;
     u->w = upscale_side(out_w, scale);

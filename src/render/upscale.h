@@ -14,8 +14,8 @@
 #include "gl/gpu.h"
 #include "gl/shader.h"
 
-#define UPSCALE_MIN 0.25    /* --scale range */
-#define UPSCALE_MAX 1.0
+#define UPSCALE_MIN SWELL_UPSCALE_MIN    /* --scale range (swell.h) */
+#define UPSCALE_MAX SWELL_UPSCALE_MAX
 
 struct upscale {
     struct gpu *gpu;            /* accounting of the target */
@@ -25,7 +25,7 @@ struct upscale {
     struct shader_program prog;
     GLint u_frame;
     GLint target;               /* the output framebuffer bound when the frame began */
-    int unit;                   /* the texture unit the stretch binds (0; set after create) */
+    int unit;                   /* the texture unit the stretch binds */
 };
 
 /* The scaled size of an output side: round(out x scale), at least 1. */
@@ -34,9 +34,10 @@ int upscale_side(int out, double scale);
 /* Builds the target and the stretch for an output of out_w x out_h at scale (UPSCALE_MIN..1),
  * and draws the stretch once (a driver that refuses it is said so here, not at a frame: its
  * stderr is scanned as the renderer's probe does, and where draws execute the result is read
- * back). depth_bits: the output's. shader_dir NULL: found (core/datadir.h). */
-int  upscale_create(struct upscale *u, struct gpu *g, int out_w, int out_h, double scale,
-                    int depth_bits, const char *shader_dir, struct swell_err *err);
+ * back). unit: the texture unit the stretch (and its probe) binds. depth_bits: the output's.
+ * shader_dir NULL: found (core/datadir.h). */
+int  upscale_create(struct upscale *u, struct gpu *g, int unit, int out_w, int out_h,
+                    double scale, int depth_bits, const char *shader_dir, struct swell_err *err);
 /* Before the frame is drawn: keeps the bound framebuffer as the output and binds the target. */
 void upscale_begin(struct upscale *u);
 /* After: the output bound again, the target stretched over all of it. */

@@ -71,7 +71,7 @@ static void check_scale(int quality, double scale)
         fail_msg("renderer_create: %s", err.msg);
     GLint depth_bits = 0;
     glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
-    if (upscale_create(&up, &gpu, W, H, scale, depth_bits, NULL, &err))
+    if (upscale_create(&up, &gpu, 0, W, H, scale, depth_bits, NULL, &err))
         fail_msg("upscale_create: %s", err.msg);
     assert_int_equal(up.w, (int)lround(W * scale));
     assert_int_equal(up.h, (int)lround(H * scale));
@@ -148,7 +148,7 @@ static void test_refused_scale(void **state)
     const double bad[] = { 0.0, 0.2, 1.5, NAN };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         err.msg[0] = '\0';
-        assert_int_equal(upscale_create(&up, &gpu, W, H, bad[i], 0, NULL, &err), SWELL_E_ARG);
+        assert_int_equal(upscale_create(&up, &gpu, 0, W, H, bad[i], 0, NULL, &err), SWELL_E_ARG);
         assert_non_null(strstr(err.msg, "0.25..1"));
         assert_true(gpu.bytes == 0);
     }
