@@ -23,6 +23,11 @@ failed=0
 # runs here passed in 3-9 s each. swell-kms takes 111 s on an idle machine and took 339 s on
 # one building Mesa beside it.
 STEP_LIMIT=${SWELL_KMS_STEP_LIMIT:-420}
+# The VM's own pulse: RESULT_DIR/heartbeat is rewritten every few seconds while a step runs
+# (its name and the guest's uptime). If the guest itself stops (this watchdog cannot run),
+# the host sees the file go stale and stops the VM at once (run-vm.sh -b) instead of waiting
+# for the whole run's limit: two CI runs ended at that limit with no trace from this watchdog.
+beat() { echo "$1 $(cut -d' ' -f1 /proc/uptime)" > "$R/heartbeat"; }
 
 # Runs "$@" (in its own session unless it is one of this script's functions); 0 ok, 1 failed,
 # 2 hung (and killed).
@@ -34,7 +39,10 @@ run_watched() {
     fi
     pid=$!
     end=$(($(date +%s) + STEP_LIMIT))
+    n=0
     while kill -0 "$pid" 2>/dev/null; do
+        n=$((n + 1))
+        [ $((n % 25)) -eq 0 ] && beat "$name"
         if [ "$(date +%s)" -ge "$end" ]; then
             echo "-- hung after ${STEP_LIMIT} s: processes and what they wait on:"
             ps -eo pid,ppid,pgid,stat,wchan:32,etime,args | grep -v ' \[' || true
@@ -59,7 +67,8 @@ run_watched() {
 step() {
     name=$1
     shift
-    echo "== $name: $*"
+    echo "== $name [at $(cut -d' ' -f1 /proc/uptime) s]: $*"
+    beat "$name"
     t0=$(date +%s)
     run_watched "$@"
     rc=$?
@@ -72,6 +81,7 @@ step() {
             echo "$name" >> "$R/flaky"
         fi
     fi
+    beat "after-$name"
     if [ "$rc" -eq 0 ]; then
         echo "-- ok $name ($(($(date +%s) - t0)) s)"
     else
