@@ -62,6 +62,8 @@ struct pattern_frame {
     struct detile_frame dt;   /* its lattice (detile.h) */
     double mx0[16], my0[16], mk[16];
     float lev_k;              /* level-0 texels per metre of footprint: width / L_i */
+    float u0x, u0y;           /* level-0 texel coordinates of the camera: the uv offset times the
+                               * width (level l's are 2^-l of level 0's, less half a texel) */
 };
 
 /* One frame's constants of a pattern that displaces some vertex (eq. 2 weight > 0): texel
@@ -466,6 +468,84 @@ static inline float magnified_var(const struct grid_pattern *p, float r, float v
     return p->k_w0 + (v - p->k_w0) * s;
 }
 
+/* k_moment_pass without the lattice (low quality's default): one tap of weight 1, by quads of
+ * vertices. The level, its texel coordinates (level l's are level 0's times 2^-l, less half a
+ * texel; the exponent built from l), their floors and fractions in vectors, in float (rest
+ * positions are camera-relative floats and the offset is under a tile: as disp_coords); then
+ * per vertex the level's bilinear sample. Per vertex and pattern about 130 -> 60 instructions
+ * (the double coordinates and their per-level tables per vertex before); k_texel's results
+ * within the float coordinates' rounding (test_grid_cpu). */
+static void k_moment_quads(const struct grid *g, const struct pattern_frame *f, float *verts,
+                           const float q_top[2])
+{
+    struct grid_pattern *p = f->p;
+    const int top = p->levels - 1, kflat = p->k_flat;
+    const float k0 = (float)(p->wc_f[0].w * p->inv_l);   /* level-0 texels per metre */
+    const f4 lk = { f->lev_k, f->lev_k, f->lev_k, f->lev_k }, kk = { k0, k0, k0, k0 };
+    const f4 ux = { f->u0x, f->u0x, f->u0x, f->u0x }, uy = { f->u0y, f->u0y, f->u0y, f->u0y };
+    const f4 half = { 0.5f, 0.5f, 0.5f, 0.5f }, two = { 2.0f, 2.0f, 2.0f, 2.0f };
+    const f4 one = { 1.0f, 1.0f, 1.0f, 1.0f }, zero = { 0.0f, 0.0f, 0.0f, 0.0f };
+    const f4 cmax = { COORD_MAX, COORD_MAX, COORD_MAX, COORD_MAX };
+    const i32x4 topv = { top, top, top, top };
+    /* the sampled levels' images (below k_flat), their masks and row strides at hand */
+    struct {
+        struct f4_image *im;
+        int wm, hm;
+        size_t stride;
+    } lv[16];
+    for (int l = 0; l < kflat && l < 16; l++) {
+        lv[l].im = &p->wc_f[l];
+        lv[l].wm = p->wc_f[l].w - 1;
+        lv[l].hm = p->wc_f[l].h - 1;
+        lv[l].stride = 4 * (size_t)(p->wc_f[l].w + 1);
+    }
+    for (int e = 0; e < g->nverts; e += 4) {   /* the arrays are padded to VBLK (grid.h) */
+        f4 r = ld4(g->foot + e) * lk;
+        i32x4 rb, lev, sb;
+        memcpy(&rb, &r, sizeof(rb));
+        /* mip_level: the exponent from r >= 2 (0 below and for NaN), at most the top */
+        lev = ((rb >> 23) - 127) & (i32x4)(r >= two);
+        lev = (lev & (lev < topv)) | (topv & ~(lev < topv));
+        sb = (127 - lev) << 23;
+        f4 sc, x, y;
+        memcpy(&sc, &sb, sizeof(sc));
+        x = (ux + ld4(g->rx + e) * kk) * sc - half;
+        y = (uy + ld4(g->ry + e) * kk) * sc - half;
+        x = -max4(-max4(x, -cmax), -cmax);   /* clamped to +-COORD_MAX: the conversion defined */
+        y = -max4(-max4(y, -cmax), -cmax);
+        i32x4 ix = __builtin_convertvector(x, i32x4), iy = __builtin_convertvector(y, i32x4);
+        ix += (i32x4)(x < __builtin_convertvector(ix, f4));   /* floor: -1 where below */
+        iy += (i32x4)(y < __builtin_convertvector(iy, f4));
+        f4 fx = x - __builtin_convertvector(ix, f4), fy = y - __builtin_convertvector(iy, f4);
+        /* magnified_var's weight of the sampled variance at level 0 (1 elsewhere) */
+        f4 ms = -max4(-max4(r + r - one, zero), -one);
+        ms = (f4)(((i32x4)ms & (lev == 0)) | ((i32x4)one & (lev != 0)));
+        int n = g->nverts - e < 4 ? g->nverts - e : 4;
+        for (int k = 0; k < n; k++) {
+            float *vx = verts + (size_t)(e + k) * GRID_FLOATS;
+            int l = lev[k];
+            if (l >= kflat) {
+                vx[GRID_A_K] += q_top[0];
+                vx[GRID_A_K + 1] += q_top[1];
+                continue;
+            }
+            struct texel_at a;
+            int xi = ix[k] & lv[l].wm, yi = iy[k] & lv[l].hm;
+            a.tx = xi >> TILE_LOG2;
+            a.ty = yi >> TILE_LOG2;
+            a.tile = a.ty * lv[l].im->tiles_x + a.tx;
+            a.stride = lv[l].stride;
+            a.off = (size_t)yi * a.stride + 4 * (size_t)xi;
+            a.vx = (f4){ fx[k], fx[k], fx[k], fx[k] };
+            a.vy = (f4){ fy[k], fy[k], fy[k], fy[k] };
+            f4 q = texel_sample(lv[l].im, &a);
+            float v = maxf(q[1] - q[0] * q[0], 0.0f);
+            vx[GRID_A_K] += q[0];
+            vx[GRID_A_K + 1] += p->k_w0 + (v - p->k_w0) * ms[k];   /* magnified_var */
+        }
+    }
+}
+
 /* Add pattern f's whitecap moments alone to every vertex (grid.h k_patterns: low quality's
  * fragment-shader patterns, whose whitecaps no fragment shader fetches), as moment_pass does
  * for a CPU pattern, at the mip level of the vertex's footprint: Dupuy's eq. 6 then sees the
@@ -486,18 +566,7 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
     float q_top[2];
     k_texel(p, top, 0.0, 0.0, NULL, q_top);
     if (!f->dt.hash) {
-        /* without the lattice (low quality's default) one tap of weight 1, no taps to build:
-         * grid_update 2.47 -> 2.01 M instructions a frame at 15 m/s from 10 m */
-        for (int k = 0; k < g->nverts; k++) {
-            float *vx = verts + (size_t)k * GRID_FLOATS;
-            int lev = mip_level(g->foot[k] * f->lev_k, top);
-            float q[2];
-            k_texel(p, lev, f->mx0[lev] + g->rx[k] * f->mk[lev],
-                    f->my0[lev] + g->ry[k] * f->mk[lev], q_top, q);
-            vx[GRID_A_K] += q[0];
-            vx[GRID_A_K + 1] += lev || p->k_flat == 0 ? q[1]
-                                                      : magnified_var(p, g->foot[k] * f->lev_k, q[1]);
-        }
+        k_moment_quads(g, f, verts, q_top);
         return;
     }
     for (int k = 0; k < g->nverts; k++) {
@@ -568,6 +637,8 @@ int grid_update(struct grid *g, const struct camera_frame *view, double t_s, flo
             f->p = p;
             detile_frame_set(&f->dt, g->detile ? g->hash : NULL, i, p->inv_l, cam);
             f->lev_k = (float)p->wc->width * (float)p->inv_l;
+            f->u0x = (float)((double)o[0] * p->wc_f[0].w);
+            f->u0y = (float)((double)o[1] * p->wc_f[0].w);
             lo = mip_level(g->foot_lo * f->lev_k, top);
             hi = mip_level(g->foot_hi * f->lev_k, top);
             for (int l = lo; l <= hi; l++) {
