@@ -1277,10 +1277,10 @@ static void test_foam_amount(void **state)
 /* One view of test_quality_match: low and high quality at gles2-min, every 8 rows' mean
  * luminance within bound of each other. The bound is 5 % but at 15 m/s from the surface: there
  * low's nearest rows are brighter than high's, 9.3 %, and 10.1-10.3 % since the sky below the
- * horizon (sky.h) darkened the sea around the same foam: held at 11 %. Two causes measured
- * (docs/architecture.md): high's foam detail, crisp edges that the concave tone map shows
- * darker than low's soft ones (6 % with it all blur), and low's eq. 6 per vertex, interpolated
- * (6.6 % with a grid twice as dense each way). */
+ * horizon (sky.h) darkened the sea around the same foam: held at 11 %. Measured
+ * (docs/architecture.md): in linear radiance the near rows are 2.4 % apart; the rest is the
+ * concave tone map, which shows low's soft foam edges (eq. 6 per vertex, interpolated) brighter
+ * than high's crisp, detailed ones of the same light (6 % apart with high's detail all blur). */
 static void low_vs_high(const struct camera *cam, float sun_elev, float sun_azim,
                         const char *what, double bound)
 {
