@@ -1238,10 +1238,12 @@ static double drawn_cover(int quality, const struct camera *cam, double t, int g
  * times the gain that brings its mean to W at each footprint. Drawn coverage, averaged over
  * four times of the loop, from 300 m and 3 km up: 0.73-1.07 W (without the gains 0.29-0.93 W),
  * held within [0.75, 1.33] W for 8 and 15 m/s in both qualities... except 8 m/s high from 3 km,
- * 0.73: held at 0.7 there. From 20 m up 0.51-0.65 W (without 0.38-0.58 W), held above 0.45:
- * up close high quality draws the foam below a texel as detail from finer waves' slopes, and
- * those slopes are partly filtered at the pixel's level, so the detail's variance falls short
- * of what it stands for (ocean.frag foam_detail takes the patches' T). */
+ * 0.73: held at 0.7 there. From 20 m up 0.51-0.65 W (without 0.38-0.58 W), held above 0.45;
+ * the cause is not found. Not high quality's foam detail: its variance is about a fifth of
+ * what it stands for there, but normalised to the whole it drew 0.52 W for 0.51 (stop 46), and
+ * low quality, which draws no detail, is as low (0.57, 0.65 W). The four times matter: from
+ * 20 m the coverage went 0.50-0.82 W over t = 3-4 s, from 3 km 0.47-1.36 W, in steps where
+ * short-period patterns change loop frame (stop 46, high quality, 15 m/s). */
 static void test_foam_amount(void **state)
 {
     (void)state;
