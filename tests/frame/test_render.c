@@ -1241,9 +1241,10 @@ static double drawn_cover(int quality, const struct camera *cam, double t, int g
  * 0.73: held at 0.7 there. From 20 m up 0.51-0.65 W (without 0.38-0.58 W), held above 0.45;
  * the cause is not found. Not high quality's foam detail: its variance is about a fifth of
  * what it stands for there, but normalised to the whole it drew 0.52 W for 0.51 (stop 46), and
- * low quality, which draws no detail, is as low (0.57, 0.65 W). The four times matter: from
- * 20 m the coverage went 0.50-0.82 W over t = 3-4 s, from 3 km 0.47-1.36 W, in steps where
- * short-period patterns change loop frame (stop 46, high quality, 15 m/s). */
+ * low quality, which draws no detail, is as low (0.57, 0.65 W). The time matters (high quality,
+ * t = 3-4 s, stop 46): from 20 m 0.50-0.82 W at 8 m/s and 0.59-0.76 W at 15 m/s; from 3 km a
+ * steady 0.90 W at 15 m/s, but 0.47-1.36 W at 8 m/s, where W is 0.0046 and few pixels carry
+ * foam. */
 static void test_foam_amount(void **state)
 {
     (void)state;
