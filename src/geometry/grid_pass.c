@@ -472,9 +472,11 @@ static inline float magnified_var(const struct grid_pattern *p, float r, float v
  * vertices. The level, its texel coordinates (level l's are level 0's times 2^-l, less half a
  * texel; the exponent built from l), their floors and fractions in vectors, in float (rest
  * positions are camera-relative floats and the offset is under a tile: as disp_coords); then
- * per vertex the level's bilinear sample. Per vertex and pattern about 130 -> 60 instructions
- * (the double coordinates and their per-level tables per vertex before); k_texel's results
- * within the float coordinates' rounding (test_grid_cpu). */
+ * per vertex the level's bilinear sample. Grid_update at the surface (rough, gles2-min, low
+ * quality, callgrind) 2.14 -> 1.93 M instructions a frame, with the double coordinates and
+ * their per-level tables per vertex before; both k-only patterns in one pass, with the
+ * variance in vectors, took 1.95 M. k_texel's results within the float coordinates' rounding
+ * (test_grid_cpu). */
 static void k_moment_quads(const struct grid *g, const struct pattern_frame *f, float *verts,
                            const float q_top[2])
 {
