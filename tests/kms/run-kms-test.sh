@@ -70,7 +70,6 @@ summary() {
          /^-- hung after/ { hung[name]++ }
          /^-- ok / { res[$3] = "ok " $4 "s"; gsub(/\(/, "", res[$3]) }
          /^-- FAIL / { res[$3] = "FAIL" }
-         /^-- flaky / { fl[$3] = 1 }
          END {
              line = "test-kms: steps (name @start s: result):"
              for (i = 1; i <= n; i++) {
