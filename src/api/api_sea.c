@@ -126,8 +126,9 @@ int swell_sea_load_budget(const char *dir, uint64_t budget_bytes, swell_sea **ou
     const struct seastate_field *bf = seastate_option("--budget");   /* its range, once */
     if (budget_bytes && (budget_bytes < bf->lo || budget_bytes > bf->hi))
         return swell_fail(err, SWELL_E_ARG, "swell_sea_load_budget: budget %llu bytes is out "
-                          "of range (%.0f to %.0f, or 0 for the set's own)",
-                          (unsigned long long)budget_bytes, bf->lo, bf->hi);
+                          "of range (%.0f to %.0f MiB, or 0 for the set's own)",
+                          (unsigned long long)budget_bytes, bf->lo / 1048576.0,
+                          bf->hi / 1048576.0);
     swell_sea *sea = calloc(1, sizeof *sea);
     if (!sea)
         return swell_fail(err, SWELL_E_NOMEM, "swell_sea_load: no memory for a sea");
