@@ -28,9 +28,9 @@ extern "C" {
 #endif
 
 #define SWELL_VERSION_MAJOR 0
-#define SWELL_VERSION_MINOR 6
+#define SWELL_VERSION_MINOR 7
 #define SWELL_VERSION_PATCH 0
-#define SWELL_VERSION_STRING "0.6.0"
+#define SWELL_VERSION_STRING "0.7.0"
 /* (major << 16) | (minor << 8) | patch, comparable with swell_version() */
 #define SWELL_VERSION_NUMBER \
     ((SWELL_VERSION_MAJOR << 16) | (SWELL_VERSION_MINOR << 8) | SWELL_VERSION_PATCH)
@@ -185,6 +185,7 @@ SWELL_API int swell_sea_check_dir(const char *dir, swell_table_check_fn fn, void
 
 /* ---- the sea on the CPU ---------------------------------------------------------------- */
 
+struct swell_wake;              /* below: the objects on the sea */
 typedef struct swell_sample_desc {
     double min_wavelength_m;    /* 0: every wave the tables hold; else waves shorter than this
                                  * fade out (Bruneton 2010 eq. 2's weight, waves of 1 to 2 x
@@ -196,6 +197,15 @@ typedef struct swell_sample_desc {
     int height_only;            /* 1: height_m and displacement alone (normal straight up,
                                  * velocity 0), a fifth of the work: a hull's buoyancy points,
                                  * a camera's height above the water */
+    const struct swell_wake *wake;  /* NULL: the open sea; else this hull's Kelvin wake is
+                                 * added, as an ocean drawing it (swell_ocean_set_wake) draws
+                                 * it: its height (to height_m and displacement[2]), its slope
+                                 * (to the normal) and the rate its height changes as the hull
+                                 * sails on (to velocity[2]; the wake's orbital motion sideways
+                                 * is not modelled), under min_wavelength_m's filter by its
+                                 * longest, transverse wave. About 0.2 us a point. A hull
+                                 * floating on the sea leaves its own wake out: it would pitch
+                                 * it on its own stern wave (swell's demo boat does) */
 } swell_sample_desc;
 
 typedef struct swell_sample {
@@ -251,7 +261,8 @@ typedef struct swell_ocean_desc {
                                  * most); default 0: the sea reflects the sky alone */
     int wakes;                  /* 1: a moving hull leaves a Kelvin wake (swell_ocean_set_wake):
                                  * one more texture unit and a 512 x 256 RGBA8 map with mipmaps
-                                 * (683 KiB); default 0 */
+                                 * (683 KiB), its heights on the CPU (683 KiB of RAM), and the
+                                 * grid displaced on the CPU on every tier; default 0 */
     int shadows;                /* 1: the application's objects shadow the sun on the sea
                                  * (swell_ocean_begin_shadow): one more texture unit and a
                                  * 512 x 512 RGBA8 target with mipmaps and 16-bit depth
@@ -404,8 +415,10 @@ SWELL_API int swell_ocean_end_shadow(swell_ocean *ocean, struct swell_err *err);
 /* A hull sailing at constant speed: its wake's waves (the 19.47 deg wedge of transverse and
  * divergent waves, their lengths set by the speed, 2 pi U^2 / g on the track) add their slopes
  * and slope variance to the sea's, and its foam (the stern's turbulent strip and where the
- * wake breaks, decaying with the sea's foam half-life) to the whitecaps. Slopes and foam only:
- * the geometry and swell_sea_sample do not include the wake's heights (decimetres). */
+ * wake breaks, decaying with the sea's foam half-life) to the whitecaps, and its heights
+ * (decimetres) to the geometry, per vertex on the CPU (an ocean made with wakes = 1 displaces
+ * its grid on the CPU on every tier). swell_sea_sample adds the same wake where its desc names
+ * it. */
 #define SWELL_WAKE_SPEED_MIN_MPS 0.5    /* the slowest hull that makes a wake, m/s */
 typedef struct swell_wake {
     double position_m[2];       /* the hull's middle on the water line, world x, y */

@@ -9,6 +9,8 @@
 #include "core/datadir.h"
 #include "core/preset.h"
 #include "tables/budget.h"
+#include "geometry/grid.h"
+#include "geometry/kelvin.h"
 #include "geometry/sea.h"
 #include "tables/tables_io.h"
 
@@ -273,6 +275,71 @@ int swell_sea_check_dir(const char *dir, swell_table_check_fn fn, void *user,
     return rc;
 }
 
+/* swell_sample_desc's wake: the hull's frame and Bruneton eq. 2's weight of its longest
+ * (transverse) wave, 2 pi U^2 / g, under min_wavelength_m (as sea_query_init weighs a
+ * pattern's band). weight 0: no wake. */
+struct sample_wake {
+    struct kelvin_desc k;
+    double pos[2], fwd[2];
+    float weight;
+};
+
+static int sample_wake_init(const swell_sea *sea, const swell_wake *w, double min_wl,
+                            struct sample_wake *out, struct swell_err *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!w || w->speed_mps == 0.0f)
+        return 0;
+    if (!isfinite(w->position_m[0]) || !isfinite(w->position_m[1]) || !isfinite(w->heading_deg))
+        return swell_fail(err, SWELL_E_ARG, "swell_sea_sample: the wake's position (%g, %g) m "
+                          "and heading %g deg must be finite", w->position_m[0],
+                          w->position_m[1], (double)w->heading_deg);
+    out->k.speed_mps = w->speed_mps;
+    out->k.hull_length_m = w->hull_length_m;
+    out->k.beam_m = w->beam_m;
+    /* the foam is not returned; the sea's half-life, held within kelvin_check's range */
+    out->k.foam_half_life_s = fmin(fmax(sea->tables.state.foam_half_life_s, 0.05), 60.0);
+    kelvin_desc_defaults(&out->k);
+    int rc = kelvin_check(&out->k, err);
+    if (rc)
+        return swell_err_context(err, "swell_sea_sample"), rc;
+    double hd = w->heading_deg * M_PI / 180.0;
+    out->pos[0] = w->position_m[0];
+    out->pos[1] = w->position_m[1];
+    out->fwd[0] = cos(hd);
+    out->fwd[1] = sin(hd);
+    double lt = 2.0 * M_PI * out->k.speed_mps * out->k.speed_mps / 9.81;
+    out->weight = min_wl > 0.0 ? grid_filter_weight(GRID_FILTER_NMIN, GRID_FILTER_NMAX,
+                                                    (float)(lt * GRID_FILTER_NMIN / min_wl))
+                               : 1.0f;
+    return 0;
+}
+
+/* The wake at world (x, y) added to sample o (p: the sea's alone): the height, the normal
+ * from the summed slopes, the height's rate d eta / dt = -U d eta / dx_hull (the pattern
+ * stands still in the hull's frame, which moves at U along fwd). */
+static void sample_wake_add(const struct sample_wake *w, double x, double y, int height_only,
+                            const struct sea_point *p, swell_sample *o)
+{
+    double dx = x - w->pos[0], dy = y - w->pos[1], f0 = w->fwd[0], f1 = w->fwd[1];
+    struct kelvin_sample s;
+    kelvin_eval(&w->k, dx * f0 + dy * f1, dy * f0 - dx * f1, &s);
+    double a = w->weight;
+    o->height_m += a * s.eta;
+    o->displacement[2] += a * s.eta;
+    if (height_only)
+        return;
+    /* the sea's slope from its normal, plus the wake's in world axes */
+    double nz = p->normal[2] > 1e-6 ? p->normal[2] : 1e-6;
+    double sx = -p->normal[0] / nz + a * (s.slope[0] * f0 - s.slope[1] * f1);
+    double sy = -p->normal[1] / nz + a * (s.slope[0] * f1 + s.slope[1] * f0);
+    double len = sqrt(sx * sx + sy * sy + 1.0);
+    o->normal[0] = (float)(-sx / len);
+    o->normal[1] = (float)(-sy / len);
+    o->normal[2] = (float)(1.0 / len);
+    o->velocity[2] += (float)(-a * w->k.speed_mps * s.slope[0]);
+}
+
 int swell_sea_sample(const swell_sea *sea, const swell_sample_desc *desc, const double *xy,
                      size_t n, double t_s, swell_sample *out, struct swell_err *err)
 {
@@ -286,6 +353,10 @@ int swell_sea_sample(const swell_sea *sea, const swell_sample_desc *desc, const 
     struct sea_query q;
     sea_query_init(&sea->tables, !(desc && desc->no_detile), min_wl, &q);
     q.height_only = desc && desc->height_only;
+    struct sample_wake wk;
+    int rc = sample_wake_init(sea, desc ? desc->wake : NULL, min_wl, &wk, err);
+    if (rc)
+        return rc;
     for (size_t i = 0; i < n; i++) {
         double x = xy[2 * i], y = xy[2 * i + 1];
         if (!isfinite(x) || !isfinite(y))
@@ -299,6 +370,8 @@ int swell_sea_sample(const swell_sea *sea, const swell_sample_desc *desc, const 
             out[i].normal[c] = (float)p.normal[c];
             out[i].velocity[c] = (float)p.velocity[c];
         }
+        if (wk.weight > 0.0f)
+            sample_wake_add(&wk, x, y, q.height_only, &p, &out[i]);
     }
     return SWELL_OK;
 }

@@ -54,6 +54,19 @@ const uint16_t *grid_indices(const struct grid *g);
  * draw (0 when no sea is in view). Allocates nothing. */
 int grid_update(struct grid *g, const struct camera_frame *view, double t_s, float *verts);
 
+/* A Kelvin wake whose heights grid_update adds to the displaced vertices (issue 18; kelvin.h,
+ * render/wake.c): each vertex gets kelvin_map_height at its rest position in the hull's frame,
+ * at its footprint. hull_xy is the hull's middle less the camera's position (the frame's
+ * camera), fwd its course's unit vector. The projected grid's range widens by the map's
+ * largest height (coverage). */
+struct kelvin_map;
+struct grid_wake {
+    const struct kelvin_map *map;   /* not owned; NULL: no wake */
+    double hull_xy[2];
+    double fwd[2];
+};
+void grid_set_wake(struct grid *g, const struct grid_wake *w);   /* NULL: none */
+
 /* Rows of triangles in draw order (far to near): the projected grid's h - 1 rows of cells, or
  * the far rings then the near patch's rows. After grid_update, row r spans indices
  * [*first, *first + *count) and *dist2_min is the smallest squared horizontal distance (m^2)

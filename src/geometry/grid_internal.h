@@ -129,7 +129,15 @@ struct grid {
     int detile;               /* 0: grid_desc no_detile */
     double crest_m;           /* bound on the summed vertical displacement, m */
     double chop_m;            /* bound on the summed horizontal (choppy) displacement, m */
+    struct grid_wake wake;    /* grid_set_wake; wake.map NULL: none */
+    double wake_crest_m;      /* the wake map's largest |height|, m (0 without one) */
 };
+
+/* The bound on the summed vertical displacement: the patterns' and the wake's. */
+static inline double grid_crest(const struct grid *g)
+{
+    return g->crest_m + g->wake_crest_m;
+}
 
 static inline float maxf(float a, float b) { return a > b ? a : b; }
 static inline float minf(float a, float b) { return a < b ? a : b; }

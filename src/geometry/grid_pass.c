@@ -8,6 +8,7 @@
 #include <math.h>
 #include <string.h>
 #include "geometry/grid_internal.h"
+#include "geometry/kelvin.h"
 
 #define COORD_MAX 1073741824.0f  /* 2^30: float texel coordinates are clamped to +-COORD_MAX */
 
@@ -601,6 +602,35 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
     }
 }
 
+void grid_set_wake(struct grid *g, const struct grid_wake *w)
+{
+    memset(&g->wake, 0, sizeof(g->wake));
+    g->wake_crest_m = 0.0;
+    if (w && w->map) {
+        g->wake = *w;
+        g->wake_crest_m = w->map->height_max_m;
+    }
+}
+
+/* The wake's heights on the vertices within its map's reach (grid_set_wake): the vertex's
+ * drawn position (the rest position moved by the patterns' choppy displacement: where the
+ * query, swell_sea_sample, finds it too; the rest position put the wake up to 0.3 m off the
+ * query in a moderate sea, test_api test_height_wake) to the hull's frame (x along fwd, y to
+ * port), the map's mipmapped height there at the vertex's footprint. */
+static void wake_heights(const struct grid *g, float *verts)
+{
+    const struct kelvin_map *m = g->wake.map;
+    double f0 = g->wake.fwd[0], f1 = g->wake.fwd[1];
+    double reach = m->span_m + m->ahead_m + m->hull_length_m + g->chop_m;
+    for (int k = 0; k < g->nverts; k++) {
+        float *p = verts + (size_t)k * GRID_FLOATS + GRID_A_POS;
+        double dx = p[0] - g->wake.hull_xy[0], dy = p[1] - g->wake.hull_xy[1];
+        if (dx * dx + dy * dy > reach * reach)
+            continue;
+        p[2] += kelvin_map_height(m, dx * f0 + dy * f1, dy * f0 - dx * f1, g->foot[k]);
+    }
+}
+
 int grid_update(struct grid *g, const struct camera_frame *view, double t_s, float *verts)
 {
     const struct camera *cam = &view->cam;
@@ -682,6 +712,8 @@ int grid_update(struct grid *g, const struct camera_frame *view, double t_s, flo
     }
     float foot_disp = nd ? displace(g, df, nd) : -INFINITY;
     write_vertices(g, verts, (float)-cam->pos[2], np > 0, foot_disp);
+    if (g->wake.map)
+        wake_heights(g, verts);
     row_distances(g);
     return n;
 }

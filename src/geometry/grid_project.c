@@ -17,7 +17,7 @@ static float far_distance(const struct grid *g, const struct camera_frame *view)
     const struct camera *cam = &view->cam;
     float f = view->far_m;
     double h = fmax(cam->pos[2] - cam->surface_z_m, CAMERA_CLEARANCE_M) + fmax(cam->surface_z_m, 0.0);
-    double d = sqrt(2.0 * EARTH_RADIUS_M * h + h * h) + sqrt(2.0 * EARTH_RADIUS_M * g->crest_m);
+    double d = sqrt(2.0 * EARTH_RADIUS_M * h + h * h) + sqrt(2.0 * EARTH_RADIUS_M * grid_crest(g));
     return (float)fmin(0.9 * f, 1.02 * d);
 }
 
@@ -137,14 +137,14 @@ static int projection_frame(const struct grid *g, const struct camera_frame *vie
     for (int pass = 0; pass < 3; pass++) {
         double r = fmin(reach, p->dmax);
         nq = frustum_slab_points(cf, cr, cu, view->tan_lrbt, near_m, far_m,
-                                 -p->alt - g->crest_m - sphere_drop((float)(r * r)),
-                                 -p->alt + g->crest_m, g->chop_m, q);
+                                 -p->alt - grid_crest(g) - sphere_drop((float)(r * r)),
+                                 -p->alt + grid_crest(g), g->chop_m, q);
         for (int k = 0; k < nq; k++)
             reach = fmax(reach, sqrt(q[k][0] * q[k][0] + q[k][1] * q[k][1]));
     }
     if (nq == 0)
         return 0;
-    p->alt_ray = fmax(p->alt, fmax(g->crest_m + g->chop_m, 1.0));
+    p->alt_ray = fmax(p->alt, fmax(grid_crest(g) + g->chop_m, 1.0));
     /* the projector's pitch: the camera's (at most level), lowered until every point that is
      * not well ahead (q . heading < half its distance) is within acos(PROJ_COS_MIN) of its axis;
      * points well ahead are in front of any projector pitched down */

@@ -40,6 +40,9 @@ struct kelvin_desc {
     double foam_half_life_s;    /* Tessendorf 2023 eq. 7-8; 0.05..60 */
 };
 
+/* hull_length_m 0: 9 m; beam_m 0: a third of the length (swell.h swell_wake's defaults). */
+void kelvin_desc_defaults(struct kelvin_desc *d);
+
 /* Refused with a message naming the field and its range: 0, else SWELL_E_ARG. */
 int kelvin_check(const struct kelvin_desc *d, struct swell_err *err);
 
@@ -71,7 +74,11 @@ struct kelvin_map {
     double ahead_m, span_m;     /* the map's front before the bow, its length from there */
     double u_offset, spread, spread_offset;
     double slope_scale;         /* the largest root mean square slope of a texel */
+    double hull_length_m;       /* the hull's it was built for */
     uint8_t *rgba;              /* every level, level 0 first */
+    float *height;              /* the mean height of each texel, m: every level, level 0 first,
+                                 * level l at offset[l] / 4 (the geometry's) */
+    double height_max_m;        /* the largest |height| of level 0 */
     size_t offset[KELVIN_MAP_LEVELS_MAX];   /* each level's first byte in rgba */
 };
 /* w x h texels (powers of two, 16..4096). The map's length: the wake's first 24 transverse
@@ -80,6 +87,12 @@ struct kelvin_map {
 int kelvin_map_build(const struct kelvin_desc *d, int w, int h, struct kelvin_map *out,
                      struct swell_err *err);
 void kelvin_map_free(struct kelvin_map *m);
+/* The wake's height at hull-frame (x, y), m, read from the map's heights as from a mipmapped
+ * texture: bilinear at the two levels around the footprint (foot_m, the sea's extent a vertex
+ * stands for; the level whose texel's longer side is half of it), blended linearly, so waves
+ * shorter than a few footprints average out and no level steps (Bruneton eq. 2's concern for
+ * the patterns). 0 off the map. */
+float kelvin_map_height(const struct kelvin_map *m, double x, double y, float foot_m);
 /* The hull-frame point (x, y) of map coordinates (u, v). */
 void kelvin_map_point(const struct kelvin_map *m, double hull_length_m, double u, double v,
                       double *x, double *y);

@@ -418,7 +418,8 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
     struct camera cam_local = *user_cam;
     const struct camera *cam = &cam_local;
     cam_local.surface_z_m = sea_surface_height(r->t, renderer_detile(r), user_cam->pos[0],
-                                             user_cam->pos[1], t_s);
+                                             user_cam->pos[1], t_s) +
+                            wake_height_at(r, user_cam->pos[0], user_cam->pos[1], 0.0f);
     r->camera_raise_m = 0.0;
     if (cam_local.pos[2] < cam_local.surface_z_m + CAMERA_CLEARANCE_M) {
         r->camera_raise_m = cam_local.surface_z_m + CAMERA_CLEARANCE_M - cam_local.pos[2];
@@ -436,6 +437,7 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
         nidx = grid_projection(r->grid, &view, &r->proj);
         stream_disp(r, t_s);
     } else {
+        wake_grid(r, view.cam.pos, r->grid);
         nidx = grid_update(r->grid, &view, t_s, r->verts);
         if (nidx > 0 && r->cpu_vterms)   /* the terms of each vertex, on the CPU (vshade.h) */
             vshade_fill(&r->vf, r->verts, grid_vertex_count(r->grid), r->shaded);

@@ -268,6 +268,7 @@ struct renderer {
     double wake_spread;               /* kelvin.h's */
     float wake_warp[4];               /* ocean.frag's: e, the u scale and offset, spread_offset */
     double wake_slope_scale;
+    struct kelvin_map wake_map;       /* its heights (the rgba on the GPU): the geometry's */
     /* Sun shadows (shadow.c, renderer_desc shadows) */
     struct pass_target shadow;        /* the sun's view the application draws casters into */
     GLuint shadow_none;               /* 1x1 transparent: a draw with no pass before it */
@@ -394,6 +395,8 @@ void shadow_uniforms(const struct renderer *r, const struct camera_frame *view, 
 /* wake.c */
 int wake_create(struct renderer *r, struct swell_err *err);
 void wake_destroy(struct renderer *r);
+void wake_grid(const struct renderer *r, const double cam_xy[2], struct grid *g);
+double wake_height_at(const struct renderer *r, double x, double y, float foot_m);
 void wake_uniforms(const struct renderer *r, const struct camera_frame *view, const GLint *u,
                    const float foam[3]);
 

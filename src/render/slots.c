@@ -170,13 +170,15 @@ unsigned low_foam_mask(const struct renderer *r)
  * Not for low quality on a sea with foam (low_foam_mask): its vertices' foam comes from the
  * CPU grid, so low quality draws one sea on every tier (a vertex-shader grid took the
  * patches' constants: 15 m/s from the surface, rows 44 % apart from gles2-min's,
- * test_render test_tiers_low). */
+ * test_render test_tiers_low). Nor with wakes: the wake's heights are added per vertex on the
+ * CPU (grid_set_wake). */
 int choose_vtf(const struct renderer *r)
 {
     GLint combined = 0;
     int n = r->t->patterns;
     int hash = renderer_detile(r);
     if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask || low_foam_mask(r) ||
+        r->d.wakes ||
         r->gpu->caps.vertex_texture_units < 2 * n + hash)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);

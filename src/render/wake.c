@@ -12,8 +12,10 @@
  * waves average out in the mean slope while their variance stays, as the patterns' do
  * (Bruneton §4.1). The slopes are rotated into the world's axes and added to the pixel's slope
  * deviation, the variance within the fetch to its slope variance (split evenly between the
- * axes), the foam to the whitecap coverage. The geometry is not displaced by the wake (its
- * heights are a few decimetres) and the CPU query does not include it.
+ * axes), the foam to the whitecap coverage. The wake's heights (a few decimetres) displace
+ * the geometry: the map's heights stay on the CPU and grid_update adds them per vertex at its
+ * footprint (grid_set_wake), so an ocean with wakes keeps the CPU grid on every tier
+ * (choose_vtf). swell_sea_sample adds them where its desc names the wake (api_sea.c).
  */
 #include <math.h>
 #include <string.h>
@@ -25,6 +27,7 @@
 
 void wake_destroy(struct renderer *r)
 {
+    kelvin_map_free(&r->wake_map);
     gpu_texture_destroy(r->gpu, &r->wake_tex);
     gpu_texture_destroy(r->gpu, &r->wake_none);
     r->wake_w = r->wake_h = 0;
@@ -77,10 +80,11 @@ int renderer_set_wake(struct renderer *r, const struct renderer_wake *w, struct 
                           "be finite", w->pos[0], w->pos[1], (double)w->heading_deg);
     struct kelvin_desc kd = {
         .speed_mps = w->speed_mps,
-        .hull_length_m = w->hull_length_m > 0.0f ? w->hull_length_m : 9.0,
+        .hull_length_m = w->hull_length_m,
+        .beam_m = w->beam_m,
         .foam_half_life_s = r->t->state.foam_half_life_s,
     };
-    kd.beam_m = w->beam_m > 0.0f ? w->beam_m : kd.hull_length_m / 3.0;
+    kelvin_desc_defaults(&kd);
     int rc = kelvin_check(&kd, err);
     if (rc)
         return rc;
@@ -105,14 +109,50 @@ int renderer_set_wake(struct renderer *r, const struct renderer_wake *w, struct 
         r->wake_warp[3] = (float)m.spread_offset;
         r->wake_spread = m.spread;
         r->wake_slope_scale = m.slope_scale;
-        kelvin_map_free(&m);
-        if (rc)
+        /* the heights stay for the geometry (grid_set_wake), the texels are on the GPU */
+        free(m.rgba);
+        m.rgba = NULL;
+        kelvin_map_free(&r->wake_map);
+        r->wake_map = m;
+        if (rc) {
+            kelvin_map_free(&r->wake_map);
             return rc;
+        }
         r->wake_built = kd;
     }
     r->wake = *w;
     r->wake_on = 1;
     return 0;
+}
+
+/* The grid's wake for a frame from camera position cam_xy (grid_set_wake): none while no wake
+ * is set. */
+void wake_grid(const struct renderer *r, const double cam_xy[2], struct grid *g)
+{
+    if (!r->d.wakes)
+        return;
+    if (!r->wake_on || !r->wake_w || !r->wake_map.height) {
+        grid_set_wake(g, NULL);
+        return;
+    }
+    double hd = r->wake.heading_deg * M_PI / 180.0;
+    struct grid_wake w = {
+        .map = &r->wake_map,
+        .hull_xy = { r->wake.pos[0] - cam_xy[0], r->wake.pos[1] - cam_xy[1] },
+        .fwd = { cos(hd), sin(hd) },
+    };
+    grid_set_wake(g, &w);
+}
+
+/* The wake's height at world (x, y) at footprint foot_m, m: 0 without one (the camera's
+ * clearance, frame.c). */
+double wake_height_at(const struct renderer *r, double x, double y, float foot_m)
+{
+    if (!r->d.wakes || !r->wake_on || !r->wake_w || !r->wake_map.height)
+        return 0.0;
+    double hd = r->wake.heading_deg * M_PI / 180.0, f0 = cos(hd), f1 = sin(hd);
+    double dx = x - r->wake.pos[0], dy = y - r->wake.pos[1];
+    return kelvin_map_height(&r->wake_map, dx * f0 + dy * f1, dy * f0 - dx * f1, foot_m);
 }
 
 /* ocean.frag's wake uniforms for a draw of view. */

@@ -5,7 +5,8 @@
  *   application at the queried height + TOL shows over the sea swell drew, and one at height
  *   - TOL is hidden by it (the depth test against the sea's own depth): the query and the drawn
  *   surface agree within TOL, on gles2-min (the CPU displaces the grid) and on gles3 (the
- *   vertex shader does), level and with the camera banked 25 deg.
+ *   vertex shader does), level and with the camera banked 25 deg; with a hull's Kelvin wake
+ *   in both (issue 18), within TOL_WAKE.
  * - The query repeats after the loop period exactly; a minimum wavelength lowers the height's
  *   spread and 0 keeps every wave (the renderer's own sea_surface_height); four threads at once
  *   get what one gets.
@@ -31,6 +32,7 @@
 
 #include <GLES2/gl2.h>
 #include "frame/frame_util.h"
+#include "geometry/kelvin.h"
 #include "geometry/sea.h"
 #include "optics/tonemap.h"
 #include "api/api.h"
@@ -42,6 +44,9 @@
 #define H 270
 #define TOL 0.08               /* m: the query vs the drawn surface (moderate sea, Hs 2.1 m; all
                                 * 24 points agree within 0.06 m, 0.03 m misses 2-3) */
+#define TOL_WAKE 0.10          /* m: the same with a hull's wake (test_height_wake: all within
+                                * 0.09 m; one point on the wake's cusp line, where its crests are
+                                * sharpest, misses 0.08 m by a little, the grid's chord) */
 #define NPTS 24
 /* test_off_axis, a half drawn alone vs that half of the whole, each row's mean colour and the
  * RMSE: the left and right halves within 0.3 % and 1.5-1.9 (the grid's columns laid out for the
@@ -140,13 +145,18 @@ static int markers_shown(const float mvp[16], const double *xy, const swell_samp
     return shown;
 }
 
-static void sea_vs_markers(int tier, double roll_deg)
+/* The markers against the sea an ocean of tier draws, the camera banked roll_deg; with a
+ * wake, the ocean draws it and the query names it (swell_sample_desc wake). Returns how many
+ * points the wake raises or lowers by more than 2 TOL (0 without one). */
+static int sea_vs_markers_wake(int tier, double roll_deg, const swell_wake *wake, double tol)
 {
     swell_ocean *o = NULL;
     struct swell_err err = { 0 };
-    swell_ocean_desc od = { .tier = tier, .detile = SWELL_DETILE_OFF };
+    swell_ocean_desc od = { .tier = tier, .detile = SWELL_DETILE_OFF, .wakes = wake != NULL };
     if (swell_ocean_create(g_sea, &od, &o, &err))
         fail_msg("swell_ocean_create: %s", err.msg);
+    if (wake && swell_ocean_set_wake(o, wake, &err))
+        fail_msg("swell_ocean_set_wake: %s", err.msg);
     swell_view v;
     float mvp[16];
     app_view(&v, mvp, roll_deg);
@@ -157,8 +167,16 @@ static void sea_vs_markers(int tier, double roll_deg)
         xy[2 * i] = 10.0 + 20.0 * (i % 6) / 5.0;        /* 10..30 m ahead */
         xy[2 * i + 1] = -6.0 + 12.0 * (i / 6) / 3.0;     /* 6 m either side */
     }
-    swell_sample_desc qd = { .no_detile = 1 };
+    swell_sample_desc qd = { .no_detile = 1, .wake = wake };
     assert_int_equal(swell_sea_sample(g_sea, &qd, xy, NPTS, t, s, &err), 0);
+    int raised = 0;
+    if (wake) {
+        swell_sample open[NPTS];
+        qd.wake = NULL;
+        assert_int_equal(swell_sea_sample(g_sea, &qd, xy, NPTS, t, open, &err), 0);
+        for (int i = 0; i < NPTS; i++)
+            raised += fabs(s[i].height_m - open[i].height_m) > 2.0 * TOL;
+    }
     int on_screen = 0;
     for (int i = 0; i < NPTS; i++) {
         float q[3] = { (float)xy[2 * i], (float)xy[2 * i + 1], (float)(s[i].height_m - EYE_Z) };
@@ -170,14 +188,21 @@ static void sea_vs_markers(int tier, double roll_deg)
         glBindFramebuffer(GL_FRAMEBUFFER, g_fbo);
         if (swell_ocean_draw(o, &v, t, &err))
             fail_msg("swell_ocean_draw: %s", err.msg);
-        shown[k] = markers_shown(mvp, xy, s, k ? -TOL : TOL);
+        shown[k] = markers_shown(mvp, xy, s, k ? -tol : tol);
     }
-    printf("tier %d, roll %.0f deg: of %d points on screen, markers %.2f m above the queried height shown at "
-           "%d, %.2f m below at %d\n", tier, roll_deg, on_screen, TOL, shown[0], TOL, shown[1]);
+    printf("tier %d, roll %.0f deg%s: of %d points on screen, markers %.2f m above the queried "
+           "height shown at %d, %.2f m below at %d\n", tier, roll_deg, wake ? ", a wake" : "",
+           on_screen, tol, shown[0], tol, shown[1]);
     assert_true(on_screen >= NPTS * 3 / 4);
     assert_int_equal(shown[0], on_screen);
     assert_int_equal(shown[1], 0);
     swell_ocean_destroy(o);
+    return raised;
+}
+
+static void sea_vs_markers(int tier, double roll_deg)
+{
+    sea_vs_markers_wake(tier, roll_deg, NULL, TOL);
 }
 
 static void test_height_gles2_min(void **state)
@@ -192,6 +217,98 @@ static void test_height_gles3(void **state)
     (void)state;
     sea_vs_markers(SWELL_TIER_GLES3, 0.0);
     sea_vs_markers(SWELL_TIER_GLES3, 25.0);
+}
+
+/* Issue 18: the wake's heights are in the drawn sea and in the query alike. A 9 m hull 45 m
+ * ahead sailing away at 5 m/s: the points 10-30 m ahead are 15-35 m behind its middle, in its
+ * wake, which moves 14 of the 24 by more than 2 TOL (crests and troughs of 0.3-0.5 m). The
+ * markers agree within TOL_WAKE on both tiers (gles3 too: an ocean with wakes displaces its grid
+ * on the CPU), level and banked. Without the heights in the geometry (tried): of 24 markers
+ * 0.1 m above the query 12 shown, of those 0.1 m below 10 shown. */
+static void test_height_wake(void **state)
+{
+    (void)state;
+    swell_wake w = { .position_m = { 45.0, 0.0 }, .heading_deg = 0.0f, .speed_mps = 5.0f,
+                     .hull_length_m = 9.0f };
+    int r2 = sea_vs_markers_wake(SWELL_TIER_GLES2_MIN, 0.0, &w, TOL_WAKE);
+    int r3 = sea_vs_markers_wake(SWELL_TIER_GLES3, 0.0, &w, TOL_WAKE);
+    sea_vs_markers_wake(SWELL_TIER_GLES2_MIN, -25.0, &w, TOL_WAKE);
+    sea_vs_markers_wake(SWELL_TIER_GLES3, -25.0, &w, TOL_WAKE);
+    printf("points the wake moves by more than %.2f m: %d, %d of %d\n", 2.0 * TOL, r2, r3, NPTS);
+    assert_true(r2 >= NPTS / 4 && r3 >= NPTS / 4);
+}
+
+/* swell_sample_desc wake: the open sea's sample plus the wake's, the hull's frame from its
+ * position and course: the height (kelvin_eval's, to height_m and displacement[2]), the normal
+ * tilted by its slope, the height's rate -U d eta / dx_hull; nothing where a minimum wavelength
+ * longer than its waves asks; a speed of 0 the open sea; bad wakes refused, naming the field. */
+static void test_query_wake(void **state)
+{
+    (void)state;
+    struct swell_err err = { 0 };
+    enum { N = 40 };
+    double xy[2 * N], t = 3.0;
+    for (int i = 0; i < N; i++) {
+        xy[2 * i] = 117.0 + 1.3 * i;   /* 3-55 m behind the stern of a hull at (110, 20) */
+        xy[2 * i + 1] = 20.0 + 0.21 * i * ((i & 1) ? 1.0 : -1.0);
+    }
+    /* sailing west */
+    swell_wake w = { .position_m = { 110.0, 20.0 }, .heading_deg = 180.0f, .speed_mps = 6.0f };
+    swell_sample open[N], a[N], lp[N], none[N];
+    swell_sample_desc od = { 0 }, wd = { .wake = &w };
+    assert_int_equal(swell_sea_sample(g_sea, &od, xy, N, t, open, &err), 0);
+    assert_int_equal(swell_sea_sample(g_sea, &wd, xy, N, t, a, &err), 0);
+    struct kelvin_desc kd = { .speed_mps = 6.0, .hull_length_m = 9.0, .beam_m = 3.0,
+                              .foam_half_life_s = 3.0 };
+    double moved = 0.0, tilt = 0.0;
+    for (int i = 0; i < N; i++) {
+        /* heading 180: the hull's x is -(world x - 110), its port -(world y - 20) */
+        struct kelvin_sample k;
+        kelvin_eval(&kd, -(xy[2 * i] - 110.0), -(xy[2 * i + 1] - 20.0), &k);
+        assert_true(fabs(a[i].height_m - open[i].height_m - k.eta) < 1e-9);
+        assert_true(fabs(a[i].displacement[2] - open[i].displacement[2] - k.eta) < 1e-9);
+        assert_true(a[i].displacement[0] == open[i].displacement[0]);
+        assert_true(fabsf(a[i].velocity[2] - open[i].velocity[2] -
+                          (float)(-6.0 * k.slope[0])) < 1e-4f);
+        /* the normal: the open sea's slope plus the wake's in world axes (x_hull = -x) */
+        double sx = -open[i].normal[0] / open[i].normal[2] - k.slope[0];
+        double sy = -open[i].normal[1] / open[i].normal[2] - k.slope[1];
+        double l = sqrt(sx * sx + sy * sy + 1.0);
+        assert_true(fabs(a[i].normal[0] + sx / l) < 1e-4 && fabs(a[i].normal[2] - 1.0 / l) < 1e-4);
+        moved = fmax(moved, fabs(k.eta));
+        tilt = fmax(tilt, hypot(k.slope[0], k.slope[1]));
+    }
+    printf("query with a wake: heights moved up to %.3f m, slopes up to %.3f\n", moved, tilt);
+    assert_true(moved > 0.1 && tilt > 0.05);
+    /* a minimum wavelength of 10 transverse waves: the wake is gone; speed 0: no wake */
+    swell_sample_desc lpd = { .wake = &w, .min_wavelength_m = 10.0 * 2.0 * M_PI * 36.0 / 9.81 };
+    swell_sample_desc lpo = { .min_wavelength_m = lpd.min_wavelength_m };
+    assert_int_equal(swell_sea_sample(g_sea, &lpd, xy, N, t, lp, &err), 0);
+    assert_int_equal(swell_sea_sample(g_sea, &lpo, xy, N, t, none, &err), 0);
+    for (int i = 0; i < N; i++)
+        assert_true(lp[i].height_m == none[i].height_m);
+    swell_wake still = w;
+    still.speed_mps = 0.0f;
+    wd.wake = &still;
+    assert_int_equal(swell_sea_sample(g_sea, &wd, xy, N, t, lp, &err), 0);
+    for (int i = 0; i < N; i++)
+        assert_true(lp[i].height_m == open[i].height_m);
+    /* bad wakes */
+    swell_wake bad = w;
+    bad.speed_mps = 45.0f;
+    wd.wake = &bad;
+    assert_int_equal(swell_sea_sample(g_sea, &wd, xy, N, t, lp, &err), SWELL_E_ARG);
+    printf("%s\n", err.msg);
+    assert_non_null(strstr(err.msg, "speed 45"));
+    bad = w;
+    bad.beam_m = -2.0f;
+    assert_int_equal(swell_sea_sample(g_sea, &wd, xy, N, t, lp, &err), SWELL_E_ARG);
+    assert_non_null(strstr(err.msg, "beam -2"));
+    bad = w;
+    bad.position_m[1] = INFINITY;
+    assert_int_equal(swell_sea_sample(g_sea, &wd, xy, N, t, lp, &err), SWELL_E_ARG);
+    printf("%s\n", err.msg);
+    assert_non_null(strstr(err.msg, "position"));
 }
 
 static void test_query_loop_and_low_pass(void **state)
@@ -741,6 +858,8 @@ int main(void)
         cmocka_unit_test(test_query_threads),
         cmocka_unit_test(test_height_gles2_min),
         cmocka_unit_test(test_height_gles3),
+        cmocka_unit_test(test_height_wake),
+        cmocka_unit_test(test_query_wake),
         cmocka_unit_test(test_embedding_keeps_app),
         cmocka_unit_test(test_texture_units),
         cmocka_unit_test(test_linear_output),

@@ -197,6 +197,63 @@ static void test_map(void **state)
     assert_int_equal(kelvin_map_build(&d, 300, 128, &m, &err), SWELL_E_ARG);
 }
 
+/* The map's heights (the geometry's, kelvin_map_height): at a fine footprint the field itself
+ * (the demo boat's 512 x 256 map; measured 0.6 % rms), at a 16 m one the waves averaged out
+ * (0.026 m rms against the field's 0.115 m; the map's texels are boxes in the warped (u, v),
+ * so the value is not a 16 m square's mean, which is 0.016 m), off the map nothing. Fails with
+ * the warp's u and v swapped (tried: 126 % rms). The level's choice is tested on the grid
+ * (test_grid test_grid_wake). */
+static void test_map_heights(void **state)
+{
+    (void)state;
+    struct kelvin_desc d = boat(4.0);
+    struct kelvin_map m;
+    struct swell_err err = { 0 };
+    assert_int_equal(kelvin_map_build(&d, 512, 256, &m, &err), 0);
+    double err2 = 0.0, sig2 = 0.0, coarse2 = 0.0, box2 = 0.0, peak = 0.0;
+    int n = 0;
+    uint32_t seed = 12345u;
+    for (int k = 0; k < 4000; k++) {
+        seed = seed * 1664525u + 1013904223u;
+        double a = (seed >> 8) / 16777216.0;
+        seed = seed * 1664525u + 1013904223u;
+        double b = (seed >> 8) / 16777216.0;
+        /* points within the wedge, 1 to 60 m behind the stern */
+        double x = -4.5 - 1.0 - 59.0 * a, back = 4.5 - x;
+        double y = (2.0 * b - 1.0) * 0.33 * back;
+        struct kelvin_sample s;
+        kelvin_eval(&d, x, y, &s);
+        double h = kelvin_map_height(&m, x, y, 0.02f);
+        err2 += (h - s.eta) * (h - s.eta);
+        sig2 += s.eta * s.eta;
+        peak = fmax(peak, fabs(s.eta));
+        /* a 16 m footprint: against the field's mean over a 16 m box there */
+        double mean = 0.0;
+        for (int j = 0; j < 8; j++)
+            for (int i = 0; i < 8; i++) {
+                struct kelvin_sample t;
+                kelvin_eval(&d, x + 2.0 * (i - 3.5), y + 2.0 * (j - 3.5), &t);
+                mean += t.eta / 64.0;
+            }
+        double hc = kelvin_map_height(&m, x, y, 16.0f);
+        coarse2 += (hc - mean) * (hc - mean);
+        box2 += mean * mean;
+        n++;
+    }
+    double rel = sqrt(err2 / sig2), coarse = sqrt(coarse2 / n), field = sqrt(sig2 / n);
+    print_message("heights, 4 m/s: field rms %.3f m (peak %.3f m); map at a 2 cm footprint "
+                  "relative rms error %.3f; at 16 m rms %.4f m against the box mean's %.4f m\n",
+                  field, peak, rel, coarse, sqrt(box2 / n));
+    assert_true(peak > 0.05);
+    assert_true(rel < 0.15);
+    assert_true(coarse < 0.3 * field);
+    /* off the map, or ahead of it */
+    assert_true(kelvin_map_height(&m, 100.0, 0.0, 0.1f) == 0.0f);
+    assert_true(kelvin_map_height(&m, -20.0, 200.0, 0.1f) == 0.0f);
+    assert_true(kelvin_map_height(&m, -1e5, 0.0, 0.1f) == 0.0f);
+    kelvin_map_free(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -205,6 +262,7 @@ int main(void)
         cmocka_unit_test(test_gradient_and_symmetry),
         cmocka_unit_test(test_heights),
         cmocka_unit_test(test_map),
+        cmocka_unit_test(test_map_heights),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
