@@ -3,7 +3,8 @@
  * application's camera matrices, then floats a buoy on the sea where swell's CPU query says
  * the water is, depth-tested against the sea swell drew. The buoy is drawn once more into
  * swell's reflection pass, so the sea reflects it, and once more into its shadow pass, so it
- * shadows the sun on the sea; a boat passing behind it (not drawn) leaves its Kelvin wake.
+ * shadows the sun on the sea; a boat passing by (not drawn) leaves its Kelvin wake, which the
+ * buoy rides: its query names the wake.
  *
  *   cc buoy.c $(pkg-config --cflags --libs swell) -lm -o buoy && ./buoy [frame.ppm]
  *
@@ -166,12 +167,19 @@ int main(int argc, char **argv)
     if (swell_ocean_create(sea, &od, &ocean, &err))
         return fail("creating the ocean", &err);
 
+    /* a 12 m hull at 5 m/s sailing north 25 m past the buoy: the buoy rides its wake, the
+     * query naming the wake as the ocean draws it */
+    swell_wake wake = { .position_m = { 16.0, 27.0 }, .heading_deg = 90.0f, .speed_mps = 5.0f,
+                        .hull_length_m = 12.0f };
     /* the camera, the application's: 4 m up, looking at the buoy 16 m ahead */
     double t = 3.0, eye[3] = { 0.0, 0.0, 4.0 }, xy[2] = { 16.0, 2.0 };
-    swell_sample at;
-    swell_sample_desc qd = { .min_wavelength_m = 1.2, .no_detile = 1 };
+    swell_sample at, open;
+    swell_sample_desc qd = { .min_wavelength_m = 1.2, .no_detile = 1, .wake = &wake };
     if (swell_sea_sample(sea, &qd, xy, 1, t, &at, &err))
         return fail("asking the sea's height", &err);
+    qd.wake = NULL;
+    if (swell_sea_sample(sea, &qd, xy, 1, t, &open, &err))
+        return fail("asking the open sea's height", &err);
     double buoy[3] = { xy[0], xy[1], at.height_m };
     swell_view view = { .camera_pos = { eye[0], eye[1], eye[2] }, .viewport = { 0, 0, W, H },
                         .flags = 0 };  /* no clear, no sky: the application's background stays */
@@ -196,9 +204,7 @@ int main(int argc, char **argv)
         return fail("drawing the sea", &err);
     glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, alone);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    /* a 12 m hull at 5 m/s passing 60 m beyond the buoy, its wake on the sea */
-    swell_wake wake = { .position_m = { 76.0, -20.0 }, .heading_deg = 90.0f, .speed_mps = 5.0f,
-                        .hull_length_m = 12.0f };
+    /* the hull's wake on the sea */
     if (swell_ocean_set_wake(ocean, &wake, &err))
         return fail("setting the wake", &err);
     /* the buoy's reflection: drawn with the pass's mirrored camera, into swell's target */
@@ -264,9 +270,10 @@ int main(int argc, char **argv)
             fclose(f);
         }
     }
-    printf("buoy: water at (%.1f, %.1f) is %.2f m high; %d sea, %d buoy, %d reflection, %d wake "
-           "and shadow, %d background pixels; GL state %s\n", xy[0], xy[1], at.height_m, sea_px,
-           buoy_px, reflection_px, changed_px, background, state_kept ? "kept" : "CHANGED");
+    printf("buoy: water at (%.1f, %.1f) is %.2f m high (%+.2f m of it the wake); %d sea, %d buoy, "
+           "%d reflection, %d wake and shadow, %d background pixels; GL state %s\n", xy[0], xy[1],
+           at.height_m, at.height_m - open.height_m, sea_px, buoy_px, reflection_px, changed_px,
+           background, state_kept ? "kept" : "CHANGED");
     swell_ocean_destroy(ocean);
     swell_sea_destroy(sea);
     eglTerminate(dpy);
