@@ -11,9 +11,9 @@
  * and beyond a kilometre 0.80 W at 15 m/s, 0.38 W at 8 m/s. foam_bias_compute finds that
  * factor's inverse, the gain that brings the mean back to W, at every whole level of footprint;
  * the renderer multiplies eq. 6's coverage by it (foam_bias_at), in both qualities. Drawn
- * coverage read back (test_render test_foam_amount): 0.73-1.07 W from 300 m and 3 km up, but
- * still 0.51-0.65 W from 20 m up, where causes outside this model remain (the loop-frame
- * blend's variance the trust sets aside, and more not yet found).
+ * coverage read back (test_render test_foam_amount, six views): 0.86-1.05 W at 15 m/s from 20 m,
+ * 300 m and 3 km up, 0.93-1.02 W at 8 m/s from 300 m and 3 km; from 20 m at 8 m/s 0.54-0.64 W,
+ * where the loop-frame blend, outside this model, takes a third (0.82-0.86 W on one frame).
  */
 #ifndef SWELL_FOAM_BIAS_H
 #define SWELL_FOAM_BIAS_H

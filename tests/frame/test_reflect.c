@@ -301,8 +301,10 @@ static void test_blur_with_roughness(void **state)
  *   build's anisotropic atlas (reflect.c) over 5.
  * - Along: a bar 0.3 m tall, 8 m wide, 2 m up; over the middle 40 columns, the reflection's
  *   variance over rows about its mean, less the bar's own. Measured 1.11 of the prediction
- *   at 8 m/s, 1.42-1.43 at 3 m/s (not explained: the slope budget's split at low wind, or the
- *   blend of versions, which widens a kernel by up to 12 %), held within [0.7, 1.6].
+ *   at 8 m/s, 1.42-1.43 at 3 m/s, held within [0.7, 1.6]. Not explained. Not the slope
+ *   budget's split at low wind: the sea's own variance along the view is Cox & Munk's (3 m/s
+ *   0.00968 against 0.00948, 8 m/s 0.0256 against 0.0253; printed). The blend of versions
+ *   widens a kernel by up to 12 %, not 42 %.
  * Measured in linear radiance (the tone map inverted: its square root widens a blurred
  * profile's tails), in an RGBA8 target, over four times of the loop. */
 #define POLE_HW 0.75
@@ -403,6 +405,14 @@ static void blur_width(GLuint fbo, int tier, float wind, double *across, double 
     double meas = ws > 0.0 ? sqrt(fmax(wyy / ws - cy * cy - own_v * own_v / 12.0, 0.0)) : 0.0;
     double pred = 2.0 * sig_u * k * px_per_rad;
     *along = meas / pred;
+    /* the sea's own variances (resolved and unresolved) against Cox & Munk's */
+    swell_sea_info si;
+    swell_sea_get_info(sea, &si);
+    double vx = si.mss_resolved[0] + si.mss_unresolved[0];
+    double vy = si.mss_resolved[1] + si.mss_unresolved[1];
+    printf("  the sea's own slope variances: along %.5f (Cox & Munk %.5f), across %.5f (%.5f); "
+           "along from its own: %.2f\n", vx, sig_u * sig_u, vy, sig_c * sig_c,
+           meas / (2.0 * sqrt(vx) * k * px_per_rad));
     printf("eq. 27's width, %s, %.0f m/s (sigma across %.3f, along %.3f): across the view "
            "%.2f of the prediction; along it %.1f px against %.1f (%.2f)\n",
            tier == SWELL_TIER_GLES2_MIN ? "gles2-min" : "gles3", (double)wind, sig_c, sig_u,
