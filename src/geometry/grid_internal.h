@@ -73,6 +73,9 @@ struct f4_image {
     int shift;                /* rounded to bytes as stream_blend does (moments, which the
                                  fragment shader's patterns read from such bytes too) */
     int level, w, h, tiles_x;
+    float mix_s;              /* > 0: a whitecap table's level 0 or 1, whose channel 2 blend_tile
+                               * fills with the blend's own variance (1 - w) w (m1 - m0)^2 as
+                               * stream_blend_whitecap does for the GPU: (channel-0 scale / 255)^2 */
     uint32_t gen;             /* bumped when the phase changes */
     struct stream_phase ph;   /* phase of generation gen */
     int box[4];               /* displacement: footprints blended for generation box_gen, */

@@ -435,15 +435,17 @@ static void moment_pass(const struct grid *g, struct pattern_frame *f, float *ve
     }
 }
 
-/* The foam memory's mean and within-texel variance <m^2> - <m>^2 (floored at 0) of k-only
- * pattern p at texel coordinates (x, y) of level lev; from its flat level up the top texel's,
- * flat (unless NULL: sampled). */
+/* The foam memory's mean, within-texel variance <m^2> - <m>^2 (floored at 0) and the loop
+ * blend's own variance (grid_internal.h f4_image mix_s; 0 from level 2 up) of k-only pattern p
+ * at texel coordinates (x, y) of level lev; from its flat level up the top texel's, flat (unless
+ * NULL: sampled), and no blend variance. */
 static inline void k_texel(struct grid_pattern *p, int lev, double x, double y,
-                           const float flat[2], float out[2])
+                           const float flat[2], float out[3])
 {
     if (flat && lev >= p->k_flat) {
         out[0] = flat[0];
         out[1] = flat[1];
+        out[2] = 0.0f;
         return;
     }
     struct texel_at a;
@@ -451,6 +453,7 @@ static inline void k_texel(struct grid_pattern *p, int lev, double x, double y,
     f4 q = texel_sample(&p->wc_f[lev], &a);
     out[0] = q[0];
     out[1] = maxf(q[1] - q[0] * q[0], 0.0f);
+    out[2] = q[2];
 }
 
 /* A vertex's within-footprint variance of k-only pattern p's foam memory where level 0 is
@@ -461,12 +464,14 @@ static inline void k_texel(struct grid_pattern *p, int lev, double x, double y,
  * coverage), W0 in its place, from r = 1/2 down; v from r = 1, linear in r between. Taking
  * v to 0 instead (W0 unused) matched high's rows as well but drew the vertices' triangles as
  * a staircase along the foam's edges (storm from 5 m). Not where level 0 is already the flat
- * level (the patch's top texel, k_texel). */
-static inline float magnified_var(const struct grid_pattern *p, float r, float v)
+ * level (the patch's top texel, k_texel). The loop blend's own variance mix, which v holds too,
+ * stays with W0 (stream.h stream_blend_whitecap: without it the blend averaged the foam away
+ * between frames up close). */
+static inline float magnified_var(const struct grid_pattern *p, float r, float v, float mix)
 {
     float s = 2.0f * r - 1.0f;
     s = s < 0.0f ? 0.0f : s > 1.0f ? 1.0f : s;
-    return p->k_w0 + (v - p->k_w0) * s;
+    return p->k_w0 + mix + (v - p->k_w0 - mix) * s;
 }
 
 /* k_moment_pass without the lattice (low quality's default): one tap of weight 1, by quads of
@@ -554,7 +559,8 @@ static void k_moment_quads(const struct grid *g, const struct pattern_frame *f, 
             f4 q = texel_sample(lv[l].im, &a);
             float v = maxf(q[1] - q[0] * q[0], 0.0f);
             vx[GRID_A_K] += q[0];
-            vx[GRID_A_K + 1] += p->k_w0 + (v - p->k_w0) * ms[k];   /* magnified_var */
+            /* magnified_var */
+            vx[GRID_A_K + 1] += p->k_w0 + q[2] + (v - p->k_w0 - q[2]) * ms[k];
         }
     }
 }
@@ -576,7 +582,7 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
     const int top = p->levels - 1;
     /* from k_flat up the top texel (one texel: one tap at no offset reads it anywhere; its
      * level follows the loop phase, grid_update) */
-    float q_top[2];
+    float q_top[3];
     k_texel(p, top, 0.0, 0.0, NULL, q_top);
     if (!f->dt.hash) {
         k_moment_quads(g, f, verts, q_top);
@@ -588,17 +594,18 @@ static void k_moment_pass(const struct grid *g, struct pattern_frame *f, float *
         struct detile_taps t;
         int lev = vertex_level(g, f, k, &x, &y, &lw, &t);
         /* the foam memory's deviation from its mean by w_j, its within-texel variance by w_j^2 */
-        float km = p->k_mean, kv = 0.0f;
+        float km = p->k_mean, kv = 0.0f, kx = 0.0f;
         for (int j = 0; j < 3; j++) {
-            float w = t.w[j], q[2];
+            float w = t.w[j], q[3];
             k_texel(p, lev, x + t.du[j] * lw, y + t.dv[j] * lw, q_top, q);
             km += w * (q[0] - p->k_mean);
             kv += w * w * q[1];
+            kx += w * w * q[2];
         }
         vx[GRID_A_K] += km;
         /* (the taps' weights: sum w_j^2 = 1, detile.h) */
-        vx[GRID_A_K + 1] += lev || p->k_flat == 0 ? kv
-                                                  : magnified_var(p, g->foot[k] * f->lev_k, kv);
+        vx[GRID_A_K + 1] += lev || p->k_flat == 0
+                                ? kv : magnified_var(p, g->foot[k] * f->lev_k, kv, kx);
     }
 }
 

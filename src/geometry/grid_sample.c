@@ -48,6 +48,8 @@ static void image_layout(struct f4_image *im, const struct swell_table *t, int l
             im->rnd = STREAM_W_ONE / 2;
             im->shift = 8;      /* log2(STREAM_W_ONE) */
         }
+        if (t->kind == TABLE_WHITECAP && l < 2)
+            im->mix_s = (t->scale[0] / 255.0f) * (t->scale[0] / 255.0f);
     }
     *texels += f4_texels(w, h);
     *tiles += (size_t)tiles_of(w) * (size_t)tiles_of(h);
@@ -191,6 +193,21 @@ void blend_tile(struct f4_image *im, int tx, int ty)
                           STREAM_W_ONE / 2, 8);
             else
                 blend_row(o, ra, rb, a + src + last, b + src + last, span, sc, bi, w0, w1, 0, 0);
+        }
+    }
+    if (im->mix_s > 0.0f) {
+        /* channel 2: the blend's own variance of the foam memory (stream.h), 0 on a frame
+         * alone */
+        float k = f0 != f1 ? im->mix_s * (float)w0 * (float)w1 *
+                                 (1.0f / (STREAM_W_ONE * STREAM_W_ONE)) : 0.0f;
+        for (int y = y0; y <= y1; y++) {
+            size_t src = (size_t)(y & (im->h - 1)) * row;
+            float *o = im->data + (size_t)y * stride;
+            for (int x = x0; x <= x1; x++) {
+                size_t at = src + 4 * (size_t)(x & (im->w - 1));
+                int d = a[at] - b[at];
+                o[4 * (size_t)x + 2] = k * (float)(d * d);
+            }
         }
     }
     im->stamp[ty * im->tiles_x + tx] = im->gen;

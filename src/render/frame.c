@@ -213,6 +213,10 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
         memcpy(sb[s], sl->slope->bias, sizeof(sb[s]));
         memcpy(ws[s], sl->wc->scale, sizeof(ws[s]));
         memcpy(wb[s], sl->wc->bias, sizeof(wb[s]));
+        /* channel 2: the loop blend's own variance (stream_blend_whitecap) over level 0's mean
+         * within-texel variance c0 (lod.c wc_trust_terms): ocean.frag add_whitecap's c0 */
+        ws[s][2] = STREAM_WC_MIX_SCALE(sl->wc->scale[0]);
+        wb[s][2] = sl->level_kvar[0];
         bind_tex(r, unit_patterns(r) + s, chain_at(&sl->slope_tex, 0), u[OU_SLOPE_TEX0 + s]);
         if (r->d.quality == QUALITY_HIGH) {
             /* the fetched patch's variance T (and below its foam memory's mean and variance)

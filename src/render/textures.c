@@ -274,7 +274,7 @@ void stream_textures(struct renderer *r, double t_s)
         upload_chain(&sl->slope_tex, sl->slope->width, sl->slope->height, sl->slope->levels,
               sl->slope_b, "renderer: slope stream", NULL);
         if (sl->wc_tex.tex[0]) {
-            stream_blend(sl->wc, &ph, sl->wc_b);
+            stream_blend_whitecap(sl->wc, &ph, sl->wc_b);
             upload_chain(&sl->wc_tex, sl->wc->width, sl->wc->height, sl->wc->levels, sl->wc_b,
                   "renderer: whitecap stream", NULL);
         }

@@ -35,4 +35,22 @@ size_t stream_level_offset(const struct swell_table *t, int level);
  * every level of an RGBA8 table. */
 void stream_blend(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst);
 
+/* A whitecap table's blend (TABLE_WHITECAP: m, <m^2>, 0, k) with, in channel 2 of levels 0 and
+ * 1, the blend's own variance of the foam memory: a texel that is m0 in one frame and m1 in the
+ * next is, blended, a mixture of variance (1 - w) w (m1 - m0)^2 about its mean. The fetched
+ * <m^2> - <m>^2 holds it too, but near the camera the renderer takes level 0's mean
+ * within-texel variance in place of the fetched one (its rounding and bilinear mix draw dots
+ * and blocks, lod.c wc_trust_terms), and without this the blend averaged the foam memory's rare
+ * deep minima away between frames (test_render test_foam_amount). The byte is
+ * B = 4 (1 - w) w d^2 / 255 (d the frames' channel-0 bytes' difference; in 16 bits: d^2 / 256
+ * times 4 (1 - w) w 256 / 255 in 1/256ths), so B / 255 times STREAM_WC_MIX_SCALE(s), s the
+ * channel-0 scale, is that variance. Levels from 2 up keep 0 there (read where the fetched
+ * variance is trusted whole). */
+#define STREAM_WC_MIX_SCALE(s) (0.25f * (s) * (s))
+void stream_blend_whitecap(const struct swell_table *t, const struct stream_phase *ph,
+                           uint8_t *dst);
+/* The 1/256ths factor of weight w (0..STREAM_W_ONE) of stream_blend_whitecap: 4 (1 - w) w 256 /
+ * 255 of the 16-bit squares' high bytes. */
+uint16_t stream_wc_mix_factor(int w);
+
 #endif

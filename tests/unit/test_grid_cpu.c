@@ -131,11 +131,60 @@ static void check_stream_blend_exact(int width, int height, int levels)
     free(t.data);
 }
 
+/* stream_blend_whitecap: stream_blend's bytes but channel 2 of levels 0 and 1, there the loop
+ * blend's own variance of channel 0 as stream.h encodes it, B = 4 (1 - w) w d^2 / 255, within
+ * 1.5 (the 16-bit squares' low bytes and the weight's factor rounded: measured 1.08), and 0
+ * on a frame alone. A 64x64 chain (the 32-byte shuffles) and a 4x2 one (the texel tail). */
+static void check_stream_blend_whitecap(int width, int height, int levels)
+{
+    struct swell_table t;
+    struct swell_err err;
+    memset(&t, 0, sizeof(t));
+    t.kind = TABLE_WHITECAP;
+    t.format = FORMAT_RGBA8;
+    t.width = width;
+    t.height = height;
+    t.layers = 3;
+    t.levels = levels;
+    assert_int_equal(table_alloc(&t, &err), 0);
+    for (size_t i = 0; i < table_bytes(&t); i++)
+        t.data[i] = (i & 3) == 2 ? 0 : (uint8_t)(frand() * 256.0f);
+    uint8_t *dst = malloc(stream_blended_bytes(&t)), *ref = malloc(stream_blended_bytes(&t));
+    static const int ws[] = { 0, 1, 37, 128, 200, 255 };
+    double worst = 0.0;
+    for (size_t k = 0; k < sizeof(ws) / sizeof(ws[0]); k++) {
+        struct stream_phase ph = { .f0 = 2, .f1 = 0, .w = ws[k] };
+        stream_blend(&t, &ph, ref);
+        stream_blend_whitecap(&t, &ph, dst);
+        double w = ws[k] / 256.0;
+        for (int l = 0; l < t.levels; l++) {
+            const uint8_t *a = t.data + table_offset(&t, l, 2), *b = t.data + table_offset(&t, l, 0);
+            size_t o = stream_level_offset(&t, l);
+            for (size_t i = 0; i < table_level_bytes(&t, l); i++) {
+                if ((i & 3) != 2 || l >= 2) {
+                    assert_int_equal(dst[o + i], ref[o + i]);
+                    continue;
+                }
+                double d = (double)b[i - 2] - a[i - 2], exact = 4.0 * (1.0 - w) * w * d * d / 255.0;
+                worst = fmax(worst, fabs(dst[o + i] - exact));
+                assert_true(fabs(dst[o + i] - exact) <= 1.5);
+            }
+        }
+    }
+    print_message("whitecap blend %dx%d: channel 2 at most %.2f off (4 (1 - w) w d^2 / 255)\n",
+                  width, height, worst);
+    free(dst);
+    free(ref);
+    free(t.data);
+}
+
 static void test_stream_blend_exact(void **state)
 {
     (void)state;
     check_stream_blend_exact(64, 64, 7);
     check_stream_blend_exact(16, 2, 5);
+    check_stream_blend_whitecap(64, 64, 7);
+    check_stream_blend_whitecap(4, 2, 3);
 }
 
 static int mip_loop(float r, int levels)
@@ -175,16 +224,22 @@ static void test_mip_level(void **state)
 
 /* Dequantised blend of loop frames in double: bias + scale / 255 (a (1 - w) + b w), the blend
  * rounded to a byte for the moment tables (as stream_blend gives the fragment shader). */
+/* Channel c of texel (x, y) of level blended at phase ph; c = -1: the blend's own variance of
+ * channel 0 (stream.h stream_blend_whitecap) */
 static double texel(const struct swell_table *t, int level, const struct stream_phase *ph,
                     int x, int y, int c)
 {
     int n = table_level_width(t, level);
     x &= n - 1;
     y &= n - 1;
-    size_t o = 4 * ((size_t)y * n + x) + c;
+    size_t o = 4 * ((size_t)y * n + x) + (c < 0 ? 0 : c);
     double a = t->data[table_offset(t, level, ph->f0) + o];
     double b = t->data[table_offset(t, level, ph->f1) + o];
     double w = ph->w / (double)STREAM_W_ONE;
+    if (c < 0) {   /* the blend's own variance of channel 0, (1 - w) w (m1 - m0)^2 */
+        double d = t->scale[0] / 255.0 * (b - a);
+        return ph->f0 == ph->f1 ? 0.0 : (1.0 - w) * w * d * d;
+    }
     double v = a * (1.0 - w) + b * w;
     if (t->kind != TABLE_DISP)
         v = floor(v + 0.5);    /* (a w0 + b w1 + 128) >> 8: v is an exact multiple of 1/256 */
@@ -214,6 +269,7 @@ static double bilinear(const struct swell_table *t, int level, const struct stre
 /* k-only vertices checked, by lattice (off, on) and by whether they took the flat top texel */
 static int g_k_checked[2][2];
 static int g_k_magnified;   /* ...of them at a magnified level 0 (grid_pass.c magnified_var) */
+static int g_k_mixed;       /* ...of those with a loop blend's own variance */
 static double g_alt = 6.0;  /* the camera's altitude, m */
 
 /* detile 0: grid_desc no_detile, the reference reads one tap at no offset; k_only: pattern 0
@@ -318,7 +374,7 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                 if (detile)
                     detile_taps(0, (cx + rx) / s.pattern[0].size_m,
                                 (cy + ry) / s.pattern[0].size_m, &tp);
-                double mean[2] = { 0, 0 }, var2 = 0.0, km = k_mean, kv = 0.0;
+                double mean[2] = { 0, 0 }, var2 = 0.0, km = k_mean, kv = 0.0, kx = 0.0;
                 /* k-only: from the flat level up the top texel (grid_k_flat_level) */
                 int klev = k_only && lev >= grid_k_flat_level(wt) ? wt->levels - 1 : lev;
                 g_k_checked[detile != 0][klev != lev] += k_only;
@@ -333,15 +389,19 @@ static void check_grid_against_reference(int reversed, int narrow, double cx, do
                     var2 += wj * wj * fmax(m[2] - m[0] * m[0], 0.0);
                     km += wj * (q[0] - k_mean);
                     kv += wj * wj * fmax(q[1] - q[0] * q[0], 0.0);
+                    if (klev == 0)
+                        kx += wj * wj * bilinear(wt, 0, &ph[0], u + tp.du[tap], v + tp.dv[tap], -1);
                 }
                 /* k-only, level 0 magnified (r texels per footprint under 1): level 0's mean
                  * within-texel variance W0 in place of the bilinear mix's, from r = 1/2 down,
-                 * linear in r up to 1 (grid_pass.c magnified_var) */
+                 * linear in r up to 1, the loop blend's own variance kept (grid_pass.c
+                 * magnified_var) */
                 double r0 = foot * wt->width / s.pattern[0].size_m;
                 if (k_only && klev == 0 && r0 < 1.0) {
                     double w0 = table_level_within_var(wt, 0, 0, 1);
-                    kv = w0 + (kv - w0) * fmax(2.0 * r0 - 1.0, 0.0);
+                    kv = w0 + kx + (kv - w0 - kx) * fmax(2.0 * r0 - 1.0, 0.0);
                     g_k_magnified++;
+                    g_k_mixed += kx > 0.0;
                 }
                 double tol_s = 0.01 * st->scale[0] / 255.0, tol_w = 0.01 * wt->scale[0] / 255.0;
                 /* and what the float rest position's rounding (2 ulp of its distance) moves at
@@ -398,8 +458,10 @@ static void test_grid_against_reference(void **state)
     for (int d = 0; d < 2; d++)
         for (int flat = 0; flat < 2; flat++)
             assert_true(g_k_checked[d][flat] > 10);
-    print_message("whitecaps per vertex: %d vertices at a magnified level 0\n", g_k_magnified);
+    print_message("whitecaps per vertex: %d vertices at a magnified level 0, %d of them with "
+                  "the loop blend's own variance\n", g_k_magnified, g_k_mixed);
     assert_true(g_k_magnified > 10);
+    assert_true(g_k_mixed > 10);
 }
 
 /* The projected grid's rest positions (by blocks of vertices, the rows whose rays all meet the
