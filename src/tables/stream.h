@@ -49,6 +49,10 @@ void stream_blend(const struct swell_table *t, const struct stream_phase *ph, ui
 #define STREAM_WC_MIX_SCALE(s) (0.25f * (s) * (s))
 void stream_blend_whitecap(const struct swell_table *t, const struct stream_phase *ph,
                            uint8_t *dst);
+/* stream_blend_whitecap's second pass alone: channel 2 of levels 0-1 over stream_blend's bytes
+ * (apart so the bench's callgrind counts it beside stream_blend, tools/bench.sh cg_own) */
+void stream_wc_blend_var(const struct swell_table *t, const struct stream_phase *ph,
+                         uint8_t *dst);
 /* The 1/256ths factor of weight w (0..STREAM_W_ONE) of stream_blend_whitecap: 4 (1 - w) w 256 /
  * 255 of the 16-bit squares' high bytes. */
 uint16_t stream_wc_mix_factor(int w);
