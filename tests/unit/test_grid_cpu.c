@@ -99,19 +99,26 @@ static void make_tables(struct swell_tables *s)
 /* Every byte of every level of a 64x64 chain (4096 down to 1 texels) and a 16x2 one (32, 8 and
  * 2 texels: the 64-byte loop, single 16-byte blocks and the byte tail) against
  * (a w0 + b w1 + 128) >> 8, for weights 0 (the copy), 1, 255 and others. */
+static void random_table(struct swell_table *t, int kind, int width, int height, int levels)
+{
+    struct swell_err err;
+    memset(t, 0, sizeof(*t));
+    t->kind = kind;
+    t->format = FORMAT_RGBA8;
+    t->width = width;
+    t->height = height;
+    t->layers = 3;
+    t->levels = levels;
+    assert_int_equal(table_alloc(t, &err), 0);
+    /* a whitecap table's channel 2 is 0 as baked (stream.h) */
+    for (size_t i = 0; i < table_bytes(t); i++)
+        t->data[i] = kind == TABLE_WHITECAP && (i & 3) == 2 ? 0 : (uint8_t)(frand() * 256.0f);
+}
+
 static void check_stream_blend_exact(int width, int height, int levels)
 {
     struct swell_table t;
-    struct swell_err err;
-    memset(&t, 0, sizeof(t));
-    t.format = FORMAT_RGBA8;
-    t.width = width;
-    t.height = height;
-    t.layers = 3;
-    t.levels = levels;
-    assert_int_equal(table_alloc(&t, &err), 0);
-    for (size_t i = 0; i < table_bytes(&t); i++)
-        t.data[i] = (uint8_t)(frand() * 256.0f);
+    random_table(&t, TABLE_SLOPE, width, height, levels);
     uint8_t *dst = malloc(stream_blended_bytes(&t));
     static const int ws[] = { 0, 1, 37, 128, 200, 255 };
     for (size_t k = 0; k < sizeof(ws) / sizeof(ws[0]); k++) {
@@ -134,21 +141,11 @@ static void check_stream_blend_exact(int width, int height, int levels)
 /* stream_blend_whitecap: stream_blend's bytes but channel 2 of levels 0 and 1, there the loop
  * blend's own variance of channel 0 as stream.h encodes it, B = 4 (1 - w) w d^2 / 255, within
  * 1.5 (the 16-bit squares' low bytes and the weight's factor rounded: measured 1.08), and 0
- * on a frame alone. A 64x64 chain (the 32-byte shuffles) and a 4x2 one (the texel tail). */
+ * on a frame alone. A 64x64 chain (16-byte steps) and a 4x2 one (16-byte steps at level 0, the texel tail at 1). */
 static void check_stream_blend_whitecap(int width, int height, int levels)
 {
     struct swell_table t;
-    struct swell_err err;
-    memset(&t, 0, sizeof(t));
-    t.kind = TABLE_WHITECAP;
-    t.format = FORMAT_RGBA8;
-    t.width = width;
-    t.height = height;
-    t.layers = 3;
-    t.levels = levels;
-    assert_int_equal(table_alloc(&t, &err), 0);
-    for (size_t i = 0; i < table_bytes(&t); i++)
-        t.data[i] = (i & 3) == 2 ? 0 : (uint8_t)(frand() * 256.0f);
+    random_table(&t, TABLE_WHITECAP, width, height, levels);
     uint8_t *dst = malloc(stream_blended_bytes(&t)), *ref = malloc(stream_blended_bytes(&t));
     static const int ws[] = { 0, 1, 37, 128, 200, 255 };
     double worst = 0.0;
