@@ -410,8 +410,9 @@ static void blur_width(GLuint fbo, int tier, float wind, double *across, double 
     swell_sea_get_info(sea, &si);
     double vx = si.mss_resolved[0] + si.mss_unresolved[0];
     double vy = si.mss_resolved[1] + si.mss_unresolved[1];
-    printf("  the sea's own slope variances: along %.5f (Cox & Munk %.5f), across %.5f (%.5f); "
-           "along from its own: %.2f\n", vx, sig_u * sig_u, vy, sig_c * sig_c,
+    printf("  the sea's own slope variances: along %.5f (Cox & Munk %.5f; the tables' %.5f), "
+           "across %.5f (%.5f; %.5f); along from its own: %.2f\n", vx, sig_u * sig_u,
+           si.mss_resolved[0], vy, sig_c * sig_c, si.mss_resolved[1],
            meas / (2.0 * sqrt(vx) * k * px_per_rad));
     printf("eq. 27's width, %s, %.0f m/s (sigma across %.3f, along %.3f): across the view "
            "%.2f of the prediction; along it %.1f px against %.1f (%.2f)\n",
