@@ -304,7 +304,12 @@ static void test_blur_with_roughness(void **state)
  *   at 8 m/s, 1.42-1.43 at 3 m/s, held within [0.7, 1.6]. Not explained. Not the slope
  *   budget's split at low wind: the sea's own variance along the view is Cox & Munk's (3 m/s
  *   0.00968 against 0.00948, 8 m/s 0.0256 against 0.0253; printed). The blend of versions
- *   widens a kernel by up to 12 %, not 42 %.
+ *   widens a kernel by up to 12 %, not 42 %. Taken apart at 3 m/s on gles2-min by editing
+ *   ocean.frag (not kept): without eq. 27's filter 14.1 px (the resolved slopes' motion; the
+ *   tables hold 0.00795 of the 0.00968, 15.4 px), without the pixel's slopes 21.1 px, both
+ *   23.8 px against 16.7: the filter alone is about as wide as the whole variance, while the
+ *   resolved slopes still move the image - across, they move it 0.09 of the prediction and the
+ *   filter carries it all. Part of the resolved variance is counted twice along the view.
  * Measured in linear radiance (the tone map inverted: its square root widens a blurred
  * profile's tails), in an RGBA8 target, over four times of the loop. */
 #define POLE_HW 0.75
