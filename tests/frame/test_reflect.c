@@ -310,8 +310,9 @@ static void test_blur_with_roughness(void **state)
  *   23.8 px against 16.7: the filter alone is about as wide as the whole variance, while the
  *   resolved slopes still move the image - across, they move it 0.09 of the prediction and the
  *   filter carries it all. The shader's own variance along the view at the bar's rows
- *   (written out instead of the colour, the same view without the board) is 0.0064-0.0077 of
- *   the whole 0.0094 - LEAN's within-texel share, which leaves the fetched means' motion
+ *   (written out instead of the colour by the swell program: the same camera, no reflection
+ *   pass) is 0.0064-0.0077 of the whole 0.0094 - LEAN's within-texel share, which leaves the
+ *   fetched means' motion
  *   sigma about 0.05 (9 px), not the 14.1 px measured: the motion along the view is what is
  *   too large, 1.5x, not the filter. Not found further.
  * Measured in linear radiance (the tone map inverted: its square root widens a blurred
