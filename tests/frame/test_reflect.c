@@ -312,9 +312,8 @@ static void test_blur_with_roughness(void **state)
  *   filter carries it all. The shader's own variance along the view at the bar's rows
  *   (written out instead of the colour by the swell program: the same camera, no reflection
  *   pass) is 0.0064-0.0077 of the whole 0.0094 - LEAN's within-texel share, which leaves the
- *   fetched means' motion
- *   sigma about 0.05 (9 px), not the 14.1 px measured: the motion along the view is what is
- *   too large, 1.5x, not the filter. Not found further.
+ *   fetched means' motion sigma about 0.05 (9 px), not the 14.1 px measured: the motion
+ *   along the view is what is too large, 1.5x, not the filter. Not found further.
  * Measured in linear radiance (the tone map inverted: its square root widens a blurred
  * profile's tails), in an RGBA8 target, over four times of the loop. */
 #define POLE_HW 0.75
