@@ -28,9 +28,9 @@ extern "C" {
 #endif
 
 #define SWELL_VERSION_MAJOR 0
-#define SWELL_VERSION_MINOR 7
+#define SWELL_VERSION_MINOR 8
 #define SWELL_VERSION_PATCH 0
-#define SWELL_VERSION_STRING "0.7.0"
+#define SWELL_VERSION_STRING "0.8.0"
 /* (major << 16) | (minor << 8) | patch, comparable with swell_version() */
 #define SWELL_VERSION_NUMBER \
     ((SWELL_VERSION_MAJOR << 16) | (SWELL_VERSION_MINOR << 8) | SWELL_VERSION_PATCH)
@@ -186,6 +186,7 @@ SWELL_API int swell_sea_check_dir(const char *dir, swell_table_check_fn fn, void
 /* ---- the sea on the CPU ---------------------------------------------------------------- */
 
 struct swell_wake;              /* below: the objects on the sea */
+struct swell_mask;              /* below: local wave amplitude */
 typedef struct swell_sample_desc {
     double min_wavelength_m;    /* 0: every wave the tables hold; else waves shorter than this
                                  * fade out (Bruneton 2010 eq. 2's weight, waves of 1 to 2 x
@@ -206,6 +207,10 @@ typedef struct swell_sample_desc {
                                  * longest, transverse wave. About 0.2 us a point. A hull
                                  * floating on the sea leaves its own wake out: it would pitch
                                  * it on its own stern wave (swell's demo boat does) */
+    const struct swell_mask *mask;  /* NULL: the open sea everywhere; else the waves scaled
+                                 * by this mask's amplitude at (x, y), as an ocean drawing it
+                                 * (swell_ocean_set_mask) draws them: heights, displacements,
+                                 * slopes and velocities times a (the wake is not scaled) */
 } swell_sample_desc;
 
 typedef struct swell_sample {
@@ -263,6 +268,11 @@ typedef struct swell_ocean_desc {
                                  * one more texture unit and a 512 x 256 RGBA8 map with mipmaps
                                  * (683 KiB), its heights on the CPU (683 KiB of RAM), and the
                                  * grid displaced on the CPU on every tier; default 0 */
+    int wave_mask;              /* 1: the waves' amplitude varies by a coarse mask
+                                 * (swell_ocean_set_mask; calmer water in an island's lee):
+                                 * one more texture unit, the mask's texture (341 KiB)
+                                 * and the grid displaced on the CPU on every tier, as with
+                                 * wakes; default 0 */
     int shadows;                /* 1: the application's objects shadow the sun on the sea
                                  * (swell_ocean_begin_shadow): one more texture unit and a
                                  * 512 x 512 RGBA8 target with mipmaps and 16-bit depth
@@ -289,8 +299,9 @@ typedef struct swell_ocean_desc {
  * later). The sea must outlive the ocean. Compiles the shaders and probes which the driver
  * runs; a program the driver refuses is replaced by one fetching less, never by no sea. Where
  * the driver refuses every program with the objects' passes (reflections, wakes, shadows,
- * refractions; Vivante GC2000 does), the ocean is made without them: it draws the sea, and
- * swell_ocean_begin_* and swell_ocean_set_wake fail with SWELL_E_ARG, saying why. */
+ * refractions, the wave mask; Vivante GC2000 does), the ocean is made without them: it draws
+ * the sea, and swell_ocean_begin_*, swell_ocean_set_wake and swell_ocean_set_mask fail with
+ * SWELL_E_ARG, saying why. */
 SWELL_API int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc,
                                  swell_ocean **out, struct swell_err *err);
 
@@ -435,6 +446,30 @@ typedef struct swell_wake {
 SWELL_API int swell_ocean_set_wake(swell_ocean *ocean, const swell_wake *wake,
                                    struct swell_err *err);
 
+/* ---- local wave parameters: a coarse mask (Bruneton et al. 2010 §6) ------------------ */
+
+/* The sea's waves times a = amplitude / 255 over a world rectangle (255: the open sea, 0:
+ * still water; beyond the rectangle the open sea), read bilinearly between texel centres:
+ * heights, choppy displacements and slopes times a, slope variances (the sun's glitter, the
+ * sky's blur) times a^2, and the whitecaps as the wind a stands for would make them (a fully
+ * developed sea's height goes as the wind squared, the whitecap fraction as U^3.41 or U^3.75
+ * by the sea's model: coverage times a^1.7 or a^1.9). The mask's gradient is not added to the
+ * slopes: keep it coarse and smooth (a texel of tens of metres or more; a blurred island lee).
+ * Not modelled: the shorter waves a lighter wind would also bring. */
+#define SWELL_MASK_MAX_TEXELS 254   /* a mask's texels along a side, at most */
+typedef struct swell_mask {
+    const unsigned char *amplitude; /* width x height bytes: row 0 along the rectangle's
+                                 * south edge (smallest y), x growing along a row */
+    int width, height;          /* texels, 1..SWELL_MASK_MAX_TEXELS each */
+    double origin_m[2];         /* world x, y of the rectangle's corner nearest -inf, m */
+    double size_m[2];           /* its extent along x and y, m (0..1e6] */
+} swell_mask;
+/* Set (or with NULL remove) the mask the next draws take (an ocean created with wave_mask =
+ * 1). The bytes are copied: free them after the call. Pass the same mask to swell_sea_sample
+ * (swell_sample_desc mask) to float things on the water drawn. */
+SWELL_API int swell_ocean_set_mask(swell_ocean *ocean, const swell_mask *mask,
+                                   struct swell_err *err);
+
 /* What an ocean is and did. */
 typedef struct swell_ocean_stats {
     int tier;                   /* enum swell_tier in use (never SWELL_TIER_BEST) */
@@ -443,8 +478,9 @@ typedef struct swell_ocean_stats {
                                  * high-quality program gets low quality */
     int detile;                 /* 1: the patterns are read detiled (swell_sample_desc no_detile
                                  * 0 samples the same sea), 0: once, at no offset */
-    int objects;                /* 1: reflections, wakes, shadows and refractions were asked for
-                                 * and the driver runs them; 0: swell_ocean_begin_* fail */
+    int objects;                /* 1: reflections, wakes, shadows, refractions or a wave mask
+                                 * were asked for and the driver runs them; 0:
+                                 * swell_ocean_begin_* and _set_wake, _set_mask fail */
     uint64_t gpu_bytes;         /* GPU memory the ocean holds (tables, maps, buffers), bytes */
     uint64_t gpu_bytes_charged; /* all that is charged to its budget: gpu_bytes and the
                                  * targets of its swell_upscale */

@@ -4,7 +4,8 @@
 // validate: FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT REFL_RIP_M=4 | FS_PATTERNS=3 FS_WHITECAPS=0 SWELL_REFLECT REFL_RIP_M=4 | FS_PATTERNS=3 FS_WHITECAPS=2 SWELL_REFLECT REFL_RIP_M=4 SWELL_LINEAR_OUT |
 // validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_WAKE | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_WAKE SWELL_REFLECT REFL_RIP_M=4 | FS_PATTERNS=0 FS_WHITECAPS=0 SWELL_WAKE SWELL_RUN_LOD |
 // validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_SHADOW | FS_PATTERNS=1 FS_WHITECAPS=1 SWELL_SHADOW SWELL_WAKE SWELL_REFLECT REFL_RIP_M=4 |
-// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_REFRACT | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_REFRACT SWELL_SHADOW SWELL_WAKE SWELL_REFLECT REFL_RIP_M=4 SWELL_LINEAR_OUT
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_REFRACT | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_REFRACT SWELL_SHADOW SWELL_WAKE SWELL_REFLECT REFL_RIP_M=4 SWELL_LINEAR_OUT |
+// validate: FS_PATTERNS=2 FS_WHITECAPS=2 SWELL_MASK | FS_PATTERNS=1 FS_WHITECAPS=0 SWELL_MASK | FS_PATTERNS=3 FS_WHITECAPS=1 SWELL_MASK SWELL_WAKE
 // FS_PATTERNS: pattern slots fetched here (largest first); the renderer draws each run of grid
 // rows with the variant whose smaller patterns are not yet fully filtered there, and passes the
 // rest as constants (their top mip level: mean and variance over the whole patch, Bruneton §4.1).
@@ -82,6 +83,12 @@ uniform sampler2D refr_tex;         // the application's objects under the water
 uniform vec4 refr_screen;           // gl_FragCoord -> the map's uv: scale xy, offset zw
 uniform mat2 refr_shift;            // the slope deviation -> the map's uv shift
 uniform vec3 refr_tau;              // each channel's beam attenuation over green's
+#endif
+#ifdef SWELL_MASK
+uniform sampler2D mask_tex;         // the wave mask's amplitude, a border of 1 around,
+                                    // mipmapped, clamped (mask.c)
+uniform mat3 mask_mat;              // gl_FragCoord -> the flat sea's point's uv times w
+uniform float mask_foam;            // the whitecap coverage's exponent of a (geometry/mask.h)
 #endif
 #ifdef SWELL_SHADOW
 uniform sampler2D shadow_tex;       // the application's shadow casters seen from the sun: their
@@ -490,6 +497,17 @@ vec4 wake_sample()
 #endif
 
 
+#ifdef SWELL_MASK
+// The wave mask's amplitude a at the flat sea's point under the pixel (mask.c); above the
+// horizon (w <= 0) the open sea.
+float mask_amp()
+{
+    vec3 h = mask_mat * vec3(gl_FragCoord.xy, 1.0);
+    float a = texture2D(mask_tex, h.xy / max(h.z, 1e-3)).a;
+    return mix(1.0, a, step(0.0, h.z));
+}
+#endif
+
 #ifdef SWELL_REFRACT
 // Hu eq. 4 per channel (refract.c): the objects' radiance and, per channel, the water's
 // transmittance down to them (1 - alpha_fog), T_c = T_green^(tau_c / tau_green); the lookup at
@@ -554,6 +572,17 @@ void main()
     WHITECAP(3, wc_tex3, v_uv23.zw);
 #endif
 #endif
+#ifdef SWELL_MASK
+    // Locally varying waves (Bruneton §6; geometry/mask.h): the fetched slopes times the
+    // mask's amplitude a, their variances times a^2 (the vertex's are scaled already,
+    // ocean.vert); the whitecaps below
+    float amp = mask_amp();
+    g_ds *= amp;
+    g_var *= amp * amp;
+#ifdef QUALITY_HIGH
+    g_dsw *= amp;
+#endif
+#endif
 #ifdef SWELL_WAKE
     // Local waves (Bruneton §6): the wake's slope joins the pixel's, the variance its fetch
     // averaged joins the unresolved (evenly per axis: the map keeps |s|^2, not each axis's;
@@ -567,8 +596,11 @@ void main()
     vec4 ftex = texture2D(fresnel_tex, uv.xy);
     vec2 d = v_sun.xy - g_ds;
 #ifdef QUALITY_HIGH
-    // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below; 1e-4 is
-    // also the smallest value whose products stay normal in fp16.
+    // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below, at 1e-4,
+    // normal in fp16. Its product is not (1e-8 flushes to 0, as llvmpipe showed): with a wave
+    // mask, whose still water is flat on both axes, eq. 15's normalisation takes each axis's
+    // inverse square root (else 0 x inf, NaN: white); elsewhere the unresolved variance keeps
+    // one axis well above the floor.
     vec2 var = max(v_base.xy + g_var, vec2(1e-4));
     // Slope variance in the view direction (eq. 25), its x weight from the vertex.
     float sig_v = sqrt(mix(var.y, var.x, v_sun.w));
@@ -579,8 +611,13 @@ void main()
 
     // Sun: Ross BRDF, eq. 15: the Gaussian slope density at the half vector's slope zeta_h,
     // centred on the pixel's mean slope, times the vertex's Fresnel / shadowing factor.
+#ifdef SWELL_MASK
+    float p = exp(-0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) * inversesqrt(var.x) *
+              inversesqrt(var.y) * v_sun.z;
+#else
     float p = exp(-0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) * inversesqrt(var.x * var.y) *
               v_sun.z;
+#endif
 #else
     // The same with the variance per vertex (ocean.vert): eq. 26 of the vertex's sigma and
     // the Gaussian of eq. 15 with its inverse variances and normalisation.
@@ -661,6 +698,9 @@ void main()
     float cover = whitecap_cover_gain(whitecap_epsilon,
                                       g_mu + sqrt(g_dvar * foam_detail.x) * (dd.x + dd.y),
                                       g_kvar, foam_gain.x * V_FOOT + foam_gain.y);
+#ifdef SWELL_MASK
+    cover *= exp2(mask_foam * log2(max(amp, 1e-4)));   // the wind a stands for: a^(b/2)
+#endif
 #else
     float cover = v_base.z;    // Dupuy eq. 6 from the vertex's moments alone (ocean.vert)
 #endif

@@ -1,5 +1,5 @@
 // ocean.vert - the sea's vertices. On gles2-min (no vertex texture fetch) the CPU displaces
-// validate: FS_PATTERNS=2 FS_WHITECAPS=1 CPU_VERTEX_TERMS | FS_PATTERNS=4 FS_WHITECAPS=2 CPU_VERTEX_TERMS | FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 SWELL_NO_DETILE
+// validate: FS_PATTERNS=2 FS_WHITECAPS=1 CPU_VERTEX_TERMS | FS_PATTERNS=4 FS_WHITECAPS=2 CPU_VERTEX_TERMS | FS_PATTERNS=0 FS_WHITECAPS=0 | FS_PATTERNS=1 FS_WHITECAPS=1 | FS_PATTERNS=2 FS_WHITECAPS=0 | FS_PATTERNS=3 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=2 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 | FS_PATTERNS=2 FS_WHITECAPS=1 VTF_PATTERNS=3 | FS_PATTERNS=1 FS_WHITECAPS=0 VTF_PATTERNS=1 | FS_PATTERNS=4 FS_WHITECAPS=0 VTF_PATTERNS=4 SWELL_NO_DETILE | FS_PATTERNS=2 FS_WHITECAPS=1 SWELL_MASK | FS_PATTERNS=2 FS_WHITECAPS=0 SWELL_MASK CPU_VERTEX_TERMS
 // them and this stage evaluates the terms of the vertex alone (vterms.glsl vertex_terms), or,
 // where the driver refuses that (CPU_VERTEX_TERMS: Vivante GC2000's 256 instructions), the CPU
 // evaluates them too (src/geometry/vshade.c) and this stage only adds each run's constants; on the
@@ -127,15 +127,24 @@ attribute vec4 a_lin;       // the lookups at s0 and their derivatives in s (v_l
 attribute vec4 a_lin_dx;
 attribute vec4 a_lin_dy;
 attribute vec4 a_sun;       // zeta_h - s0, the Ross factor, eq. 25's x weight
-attribute vec3 a_fog;       // low quality: in-scattered light of the path to the camera;
-                            // high: the haze's phase weights (vterms.glsl)
+attribute vec4 a_fog;       // low quality: in-scattered light of the path to the camera;
+                            // high: the haze's phase weights (vterms.glsl); w: the wave
+                            // mask's amplitude (SWELL_MASK)
 #else
 // gles2-min: the CPU displaced the vertex (grid.c); the terms of the vertex alone are
 // evaluated here.
 attribute vec3 a_pos;       // displaced, camera-relative, m
 attribute vec2 a_rest;      // rest position on the sea plane, camera-relative, m
 attribute vec4 a_geo_slope; // CPU patterns: mean slope xy, resolved slope variance xy
-attribute vec2 a_geo_k;     // CPU patterns: foam memory mean, variance (Dupuy eq. 7-8)
+attribute vec3 a_geo_k;     // CPU patterns: foam memory mean, variance (Dupuy eq. 7-8);
+                            // the wave mask's amplitude (SWELL_MASK)
+#endif
+#ifdef SWELL_MASK
+// The wave mask (render/mask.c, geometry/mask.h): the CPU scaled the vertex's displacement,
+// its CPU patterns' slopes and variances by the amplitude a at its rest point; the variances
+// added here (the patches' constants, the unresolved, low quality's fetched) take a^2, the
+// whitecap coverage evaluated here a^mask_foam_v.
+uniform float mask_foam_v;
 #endif
 
 uniform mat4 world_to_clip;             // camera-relative world -> clip
@@ -244,18 +253,25 @@ void main()
     lin_dy = a_lin_dy;
     sun = a_sun;
     geo = vec3(a_pos.w, a_geo.zw);
-    fog = a_fog;
+    fog = a_fog.xyz;
 #else
     pos = a_pos;
     rest = a_rest;
     svar = a_geo_slope.zw;
-    k_geo = a_geo_k;
+    k_geo = a_geo_k.xy;
     vertex_terms(pos, rest, a_geo_slope.xy, svar, lin, lin_dx, lin_dy, sun, geo, fog);
 #endif
     v_lin = lin;
     v_lin_dx = lin_dx;
     v_lin_dy = lin_dy;
-    vec2 var_base = svar + const_slope.zw + unresolved_var;
+#if defined(SWELL_MASK) && defined(CPU_VERTEX_TERMS)
+    float amp2 = a_fog.w * a_fog.w;
+#elif defined(SWELL_MASK) && !defined(VTF_PATTERNS)
+    float amp2 = a_geo_k.z * a_geo_k.z;
+#else
+    float amp2 = 1.0;       // (choose_vtf: no mask with vertex texture fetch)
+#endif
+    vec2 var_base = svar + amp2 * (const_slope.zw + unresolved_var);
     vec2 k_base = k_geo + const_k.xy;
 #ifdef QUALITY_HIGH
     v_sun = sun;
@@ -266,6 +282,9 @@ void main()
     // is resolved per vertex, as the moments are then the same at every vertex).
     v_base.zw = vec2(whitecap_cover_gain(whitecap_epsilon_v, k_base.x, k_base.y,
                                          foam_gain_v.x * geo.x + foam_gain_v.y), 0.0);
+#ifdef SWELL_MASK
+    v_base.z *= exp2(mask_foam_v * 0.5 * log2(max(amp2, 1e-8)));
+#endif
 #endif
     // the haze's Mie and Rayleigh weights, its green transmittance, the footprint (the sky
     // map's eq. 27 offset geo.y is derived per pixel from v_lin.zw, ocean.frag)
@@ -274,7 +293,7 @@ void main()
     // Low quality: the pixel's slope variance per vertex (fetched_var), so the vertex carries
     // the Gaussian's inverse variances and normalisation with the Ross factor (ocean.frag)
     // and eq. 26's terms of sigma (common.glsl fresnel_eff_terms).
-    vec2 var = max(var_base + fetched_var(geo.x), vec2(1e-4));
+    vec2 var = max(var_base + amp2 * fetched_var(geo.x), vec2(1e-4));
     float sig_v = sqrt(mix(var.y, var.x, sun.w));
     v_sun = vec4(sun.xy, sun.z * inversesqrt(var.x * var.y), fresnel_eff_e(sig_v));
     v_base = vec4(0.5 / var, fresnel_eff_k(sig_v), geo.x);
@@ -284,6 +303,9 @@ void main()
     // (times the gain that brings its mean to the bake's W at this footprint, ocean.frag)
     float cover = whitecap_cover_gain(whitecap_epsilon_v, k_base.x, k_base.y,
                                       foam_gain_v.x * geo.x + foam_gain_v.y);
+#ifdef SWELL_MASK
+    cover *= exp2(mask_foam_v * 0.5 * log2(max(amp2, 1e-8)));
+#endif
     v_fog = vec4(fog + foam_radiance * (cover * geo.z), (1.0 - cover) * geo.z);
 #endif
 #define SLOT_UV(i) (pattern_uv_offset[i] + rest * pattern_inv_size[i])

@@ -7,8 +7,8 @@ gles2-min, in both qualities. swell's start-up probe (src/render/renderer.c prob
 ocean variant and the sky once, each between two labelled lines on stderr
 (SWELL_SHADER_LABELS=1), so the statistics each driver prints while compiling it (MESA_DEBUG=
 context and the driver's shaderdb switch) are told apart by program. Each is run again with the
-demo boat (--boat: an ocean with reflections, wakes, shadows and refractions), whose ocean
-programs (named with " objects") are recorded too; the frame-rate estimates are the sea's
+demo boat and a wave mask (--boat --mask: an ocean with reflections, wakes, shadows,
+refractions and the mask), whose ocean programs (named with " objects") are recorded too; the frame-rate estimates are the sea's
 alone.
 
 Writes build/devices/results.json (one record per GPU model, tier, quality, program and stage)
@@ -140,7 +140,7 @@ def program_name(vs, defines, fs=""):
     d = dict(kv.split("=", 1) if "=" in kv else (kv, "") for kv in defines.split())
     if vs.startswith("ocean"):
         objects = any(k in d for k in ("SWELL_REFLECT", "SWELL_WAKE", "SWELL_SHADOW",
-                                       "SWELL_REFRACT"))
+                                       "SWELL_REFRACT", "SWELL_MASK"))
         return "ocean k=%s kw=%s %s%s%s%s" % (
             d.get("FS_PATTERNS", "?"), d.get("FS_WHITECAPS", "?"),
             "high" if "QUALITY_HIGH" in d else "low",
@@ -398,8 +398,10 @@ def run(args):
                        "--out", os.path.join(out_dir, "frame.png"), "--scale", str(SCALES[-1])]
                 if tier != "auto":
                     cmd += ["--tier", tier]
-                if boat:   # 4 m/s on course 30 deg: a wake, its reflection, shadow, refraction
-                    cmd += ["--boat", "4,30"]
+                if boat:   # 4 m/s on course 30 deg: a wake, its reflection, shadow, refraction;
+                    # and the wave mask of an island's lee (every objects program has it too)
+                    cmd += ["--boat", "4,30", "--mask", "docs/lee-mask.png",
+                            "--mask-area", "-1280,-1280,2560,2560"]
                 try:
                     p = subprocess.run(cmd, env=env, cwd=root, stdout=subprocess.PIPE,
                                        stderr=subprocess.STDOUT, text=True, timeout=120)
@@ -530,8 +532,9 @@ def write_doc(path, runs, records, estimates):
               "renderer_create: as first built, else built again with the terms of each vertex "
               "on the CPU, 'cpu-vertex', and/or without the lattice of random offsets, "
               "'no-detile', as low quality always is); programs: every one built on the way.",
-              "With the boat: `swell --boat 4,30`, an ocean with reflections, wakes, shadows and "
-              "refractions (its ocean programs are named with 'objects').",
+              "With the boat: `swell --boat 4,30 --mask docs/lee-mask.png --mask-area "
+              "-1280,-1280,2560,2560`, an ocean with reflections, wakes, shadows, refractions and "
+              "the wave mask (its ocean programs are named with 'objects').",
               "", "| GPU | tier asked | tier | quality asked | boat | drawn in | build | exit | "
               "programs |", "|---|---|---|---|---|---|---|---|---|"]
     for r in runs:

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "api/api.h"
+#include "geometry/mask.h"
 #include "gl/glstate.h"
 
 _Static_assert((int)SWELL_QUALITY_HIGH == QUALITY_HIGH && (int)SWELL_QUALITY_LOW == QUALITY_LOW,
@@ -61,6 +62,7 @@ int swell_ocean_create(const swell_sea *sea, const swell_ocean_desc *desc, swell
         .linear_output = d->linear_output, .reflections = d->reflections != 0,
         .wakes = d->wakes != 0, .shadows = d->shadows != 0,
         .refractions = d->refractions != 0, .pixel_lod = d->pixel_lod != 0,
+        .wave_mask = d->wave_mask != 0,
         .debug_variants = d->debug_programs != 0,
     };
     struct gl_state st;
@@ -278,6 +280,27 @@ int swell_ocean_set_wake(swell_ocean *o, const swell_wake *w, struct swell_err *
     gl_state_restore(&st);
     if (rc)
         swell_err_context(err, "swell_ocean_set_wake");
+    return rc;
+}
+
+int swell_ocean_set_mask(swell_ocean *o, const swell_mask *m, struct swell_err *err)
+{
+    if (!o)
+        return swell_fail(err, SWELL_E_ARG, "swell_ocean_set_mask: ocean is NULL");
+    struct wave_mask wm;
+    int rc = 0;
+    if (m)
+        rc = wave_mask_init(&wm, "swell_ocean_set_mask", m->amplitude, m->width, m->height,
+                            m->origin_m, m->size_m, err);
+    if (rc)
+        return rc;
+    /* the mask is uploaded on its unit: restored as a draw restores it */
+    struct gl_state st;
+    save_state(o, &st);
+    rc = renderer_set_mask(o->renderer, m ? &wm : NULL, err);
+    gl_state_restore(&st);
+    if (rc)
+        swell_err_context(err, "swell_ocean_set_mask");
     return rc;
 }
 

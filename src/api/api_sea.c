@@ -11,6 +11,7 @@
 #include "tables/budget.h"
 #include "geometry/grid.h"
 #include "geometry/kelvin.h"
+#include "geometry/mask.h"
 #include "geometry/sea.h"
 #include "tables/tables_io.h"
 
@@ -357,13 +358,28 @@ int swell_sea_sample(const swell_sea *sea, const swell_sample_desc *desc, const 
     int rc = sample_wake_init(sea, desc ? desc->wake : NULL, min_wl, &wk, err);
     if (rc)
         return rc;
+    const swell_mask *sm = desc ? desc->mask : NULL;
+    struct wave_mask mask;
+    if (sm && (rc = wave_mask_init(&mask, "swell_sea_sample", sm->amplitude, sm->width,
+                                   sm->height, sm->origin_m, sm->size_m, err)))
+        return rc;
     for (size_t i = 0; i < n; i++) {
         double x = xy[2 * i], y = xy[2 * i + 1];
         if (!isfinite(x) || !isfinite(y))
             return swell_fail(err, SWELL_E_ARG, "swell_sea_sample: point %zu (%g, %g) is not "
                               "finite", i, x, y);
         struct sea_point p;
-        sea_query_point(&sea->tables, &q, x, y, t_s, &p);
+        /* the mask's amplitude at (x, y) scales every pattern's displacement (mask.h; the
+         * drawn vertex takes it at its rest point, within a coarse mask's texel of here) */
+        float a = sm ? wave_mask_at(&mask, x, y) : 1.0f;
+        if (a != 1.0f) {
+            struct sea_query qa = q;
+            for (int k = 0; k < SWELL_MAX_PATTERNS; k++)
+                qa.weight[k] *= a;
+            sea_query_point(&sea->tables, &qa, x, y, t_s, &p);
+        } else {
+            sea_query_point(&sea->tables, &q, x, y, t_s, &p);
+        }
         out[i].height_m = p.height;
         for (int c = 0; c < 3; c++) {
             out[i].displacement[c] = p.disp[c];

@@ -76,6 +76,10 @@ static void usage(FILE *f)
 "  --boat SPEED,HDG  a demo boat 30 m ahead of the camera, sailing at SPEED m/s\n"
 "                    (0..20) on course HDG deg (CCW from east), floating on the sea by\n"
 "                    its CPU query, reflected in it; B on KMS shows or hides it  [none]\n"
+"  --mask FILE.png   the waves' amplitude over an area by the image's grey levels (a\n"
+"                    colour image's red): white the open sea, black still water (an\n"
+"                    island's lee); at most 254 x 254 pixels, north up           [none]\n"
+"  --mask-area X0,Y0,W,H  where the mask lies: its south-west corner and size, m\n"
 "  --scale S         render scale: the frame drawn at S x the output's size and\n"
 "                    stretched over it, bilinear (0.25..1; S^2 of the pixels shaded:\n"
 "                    for GPUs too slow to shade every pixel, docs/devices.md)         [1]\n"
@@ -186,7 +190,7 @@ int options_parse(int argc, char **argv, struct options *o)
         "--preset", "--wind", "--budget", "--sun", "--camera", "--heading", "--pitch", "--path",
         "--roll", "--quality", "--geometry", "--tier", "--lod", "--device", "--connector", "--mode",
         "--kms-api", "--warmup", "--results", "--scene", "--debug", "--detile", "--scale", "--boat",
-        NULL,
+        "--mask", "--mask-area", NULL,
     };
     struct args args = { "swell", argc, argv, 1, flags, valued, NULL, usage,
                          "swell " SWELL_VERSION_STRING };
@@ -252,6 +256,18 @@ int options_parse(int argc, char **argv, struct options *o)
             o->boat = 1;
             o->boat_speed_mps = (float)s[0];
             o->boat_heading_deg = (float)s[1];
+        } else if (!strcmp(a, "--mask")) {
+            o->mask_path = v;
+            if (!v[0])
+                r = swell_fail(&err, SWELL_E_ARG, "--mask: empty file name (a grey PNG)");
+        } else if (!strcmp(a, "--mask-area")) {
+            r = parse_doubles(a, v, 4, -1e9, 1e9, o->mask_area, &err);
+            if (!r && (!(o->mask_area[2] > 0.0) || o->mask_area[2] > 1e6 ||
+                       !(o->mask_area[3] > 0.0) || o->mask_area[3] > 1e6))
+                r = swell_fail(&err, SWELL_E_ARG, "--mask-area: width %g and height %g m in "
+                               "'%s' must be above 0 and at most 1e6 m", o->mask_area[2],
+                               o->mask_area[3], v);
+            o->mask_area_given = 1;
         } else if (!strcmp(a, "--camera")) {
             r = parse_doubles(a, v, 3, -1e7, 1e7, o->camera.pos, &err);
             if (!r && (o->camera.pos[2] < 0.1 || o->camera.pos[2] > INPUT_ALT_MAX_M))
@@ -349,6 +365,11 @@ int options_parse(int argc, char **argv, struct options *o)
     if (o->bench && (o->out || o->duration_s > 0 || o->frames == 0)) {
         fprintf(stderr, "swell: --bench times a fixed number of frames (--frames N, N >= 1) "
                 "and writes no PNG: drop --out/--duration\n");
+        return 2;
+    }
+    if (!o->mask_path != !o->mask_area_given) {
+        fprintf(stderr, "swell: --mask FILE.png and --mask-area X0,Y0,W,H go together: the "
+                "image's grey levels and where on the sea it lies, m\n");
         return 2;
     }
     if (o->debug_variants && o->scale > 0 && o->scale < 1) {

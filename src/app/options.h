@@ -42,6 +42,9 @@ struct options {
     const char *scene;          /* --scene: label in the results */
     int boat;                   /* --boat: the demo boat (app/boat.h) */
     float boat_speed_mps, boat_heading_deg;
+    const char *mask_path;      /* --mask FILE.png: the waves' amplitude by its grey levels */
+    double mask_area[4];        /* --mask-area X0,Y0,W,H: where it lies, m */
+    int mask_area_given;
 };
 
 /* --out's text: -1 when not a file name or a pattern with one %d, else its %d count (0, 1). */

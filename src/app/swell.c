@@ -477,6 +477,47 @@ static void print_start(const struct app *app)
     fflush(stdout);
 }
 
+/* --mask: the PNG's grey levels (red), north up, as the ocean's wave mask over --mask-area.
+ * A driver that runs no program with the mask draws the open sea, saying so. */
+static int load_mask(struct app *app, struct swell_err *err)
+{
+    const struct options *o = app->o;
+    uint8_t *rgba = NULL;
+    int w = 0, h = 0;
+    int rc = image_read_png(o->mask_path, &rgba, &w, &h, err);
+    if (rc) {
+        swell_err_context(err, "--mask");
+        return rc;
+    }
+    if (w > SWELL_MASK_MAX_TEXELS || h > SWELL_MASK_MAX_TEXELS) {
+        free(rgba);
+        return swell_fail(err, SWELL_E_ARG, "--mask: %s is %d x %d pixels; a wave mask has at "
+                          "most %d x %d (a coarse one: tens of metres a pixel): scale it down",
+                          o->mask_path, w, h, SWELL_MASK_MAX_TEXELS, SWELL_MASK_MAX_TEXELS);
+    }
+    uint8_t *amp = malloc((size_t)w * (size_t)h);
+    if (!amp) {
+        free(rgba);
+        return swell_fail(err, SWELL_E_NOMEM, "--mask: no memory");
+    }
+    for (int j = 0; j < h; j++)   /* the mask's row 0 is its south edge, the image's bottom */
+        for (int i = 0; i < w; i++)
+            amp[(size_t)j * (size_t)w + (size_t)i] =
+                rgba[4 * ((size_t)(h - 1 - j) * (size_t)w + (size_t)i)];
+    free(rgba);
+    swell_mask m = { .amplitude = amp, .width = w, .height = h,
+                     .origin_m = { o->mask_area[0], o->mask_area[1] },
+                     .size_m = { o->mask_area[2], o->mask_area[3] } };
+    if (!app->st.objects) {
+        fprintf(stderr, "swell: --mask: this GPU's driver runs no program with the wave mask; "
+                "the open sea is drawn\n");
+    } else if ((rc = swell_ocean_set_mask(app->ocean, &m, err))) {
+        swell_err_context(err, "--mask");
+    }
+    free(amp);
+    return rc;
+}
+
 /* The ocean, the render scale and the boat in the platform's context. */
 static int open_ocean(struct app *app, struct swell_err *err)
 {
@@ -486,12 +527,14 @@ static int open_ocean(struct app *app, struct swell_err *err)
         .sun_elev_deg = o->sun_elev_deg, .sun_azim_deg = o->sun_azim_deg,
         .pixel_lod = o->pixel_lod, .debug_programs = o->debug_variants,
         .reflections = o->boat, .wakes = o->boat, .shadows = o->boat, .refractions = o->boat,
-        .note = note_fallback,
+        .wave_mask = o->mask_path != NULL, .note = note_fallback,
     };
     int rc = swell_ocean_create(app->sea, &od, &app->ocean, err);
     if (rc)
         return rc;
     swell_ocean_get_stats(app->ocean, &app->st);
+    if (o->mask_path && (rc = load_mask(app, err)))
+        return rc;
     if (o->scale > 0 && o->scale < 1) {
         /* the output's framebuffer is bound here (the platform's) */
         GLint depth_bits = 0;

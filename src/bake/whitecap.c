@@ -6,22 +6,35 @@
 
 #include "core/seastate.h"
 
-double whitecap_model_fraction(int model, double wind_speed_mps)
+/* W = a U^b of a model; 0 for an unknown one */
+static int model_fit(int model, double *a, double *b)
 {
-    double a, b;
     switch (model) {
     case WHITECAP_DEFAULT:
     case WHITECAP_MOM80:   /* Tessendorf 2023 eq. 14 (Monahan & O'Muircheartaigh 1980) */
-        a = 3.84e-6;
-        b = 3.41;
-        break;
+        *a = 3.84e-6;
+        *b = 3.41;
+        return 1;
     case WHITECAP_WU88:    /* Wu 1988 */
-        a = 2.0e-6;
-        b = 3.75;
-        break;
+        *a = 2.0e-6;
+        *b = 3.75;
+        return 1;
     default:
-        return NAN;
+        return 0;
     }
+}
+
+double whitecap_model_exponent(int model)
+{
+    double a, b;
+    return model_fit(model, &a, &b) ? b : NAN;
+}
+
+double whitecap_model_fraction(int model, double wind_speed_mps)
+{
+    double a, b;
+    if (!model_fit(model, &a, &b))
+        return NAN;
     /* eq. 1 with U_0 = 0: both fits start at calm water */
     if (!(wind_speed_mps > 0.0))
         return 0.0;

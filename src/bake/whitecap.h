@@ -21,6 +21,8 @@
  * unknown model. MOM80 (eq. 14): 3.84e-6 U^3.41. WU88 (Wu 1988, J. Phys. Oceanogr. 18):
  * 2.0e-6 U^3.75. */
 double whitecap_model_fraction(int model, double wind_speed_mps);
+/* That model's exponent b of U (NaN for an unknown model). */
+double whitecap_model_exponent(int model);
 
 /* Smaller eigenvalue of [[1 + jxx, jxy], [jxy, 1 + jyy]] (the J of eq. 6, symmetric because the
  * displacement of eq. 4 is a gradient). */

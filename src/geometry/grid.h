@@ -17,7 +17,8 @@
 
 /* Vertex layout, floats: displaced position (3), rest position on the sea plane (2), mean
  * slope of the CPU patterns (2), resolved slope variance of the CPU patterns (2), Dupuy k mean
- * and variance of the CPU patterns (2), one float of padding (48 bytes a vertex, whole vectors). */
+ * and variance of the CPU patterns (2), the wave mask's amplitude at the rest position
+ * (grid_set_mask; else padding) (48 bytes a vertex, whole vectors). */
 enum grid_attr {
     GRID_A_POS = 0, GRID_A_REST = 3, GRID_A_SLOPE = 5, GRID_A_SVAR = 7, GRID_A_K = 9,
     GRID_A_PAD = 11, GRID_FLOATS = 12
@@ -66,6 +67,14 @@ struct grid_wake {
     double fwd[2];
 };
 void grid_set_wake(struct grid *g, const struct grid_wake *w);   /* NULL: none */
+
+/* A coarse mask of the waves' amplitude (mask.h): grid_update scales each vertex's
+ * displacement and the CPU patterns' slopes by its amplitude a at the vertex's rest position
+ * (world: the frame camera's position plus it), their slope variances by a^2, and writes a to
+ * GRID_A_PAD (ocean.vert takes it to scale the variances it adds). on 0: none of it (the pad
+ * left as it is); on 1 with m NULL: a = 1 everywhere. m's bytes must outlive its use. */
+struct wave_mask;
+void grid_set_mask(struct grid *g, int on, const struct wave_mask *m);
 
 /* Rows of triangles in draw order (far to near): the projected grid's h - 1 rows of cells, or
  * the far rings then the near patch's rows. After grid_update, row r spans indices

@@ -13,6 +13,7 @@
 #include <string.h>
 #include "geometry/detile.h"
 #include "geometry/grid.h"
+#include "geometry/mask.h"
 
 #define EARTH_R2 ((float)(EARTH_RADIUS_M * EARTH_RADIUS_M))
 
@@ -134,6 +135,9 @@ struct grid {
     double chop_m;            /* bound on the summed horizontal (choppy) displacement, m */
     struct grid_wake wake;    /* grid_set_wake; wake.map NULL: none */
     double wake_crest_m;      /* the wake map's largest |height|, m (0 without one) */
+    int mask_attr;            /* grid_set_mask: 1: every vertex's GRID_A_PAD holds its mask
+                               * amplitude (1 without a mask) */
+    struct wave_mask mask;    /* mask.amp NULL: none */
 };
 
 /* The bound on the summed vertical displacement: the patterns' and the wake's. */

@@ -638,6 +638,48 @@ static void wake_heights(const struct grid *g, float *verts)
     }
 }
 
+void grid_set_mask(struct grid *g, int on, const struct wave_mask *m)
+{
+    g->mask_attr = on;
+    memset(&g->mask, 0, sizeof(g->mask));
+    if (on && m && m->amp)
+        g->mask = *m;
+}
+
+/* The mask's amplitude a on every vertex (grid_set_mask): its displacement from the rest
+ * point (and the sphere's drop) times a, the CPU patterns' mean slope times a, their resolved
+ * variance times a^2; a itself to GRID_A_PAD. */
+static void mask_apply(const struct grid *g, const double cam[2], float z, float *verts)
+{
+    /* the rest point's texel coordinates (mask.h), camera-relative: u = u0 + rx / dx, in
+     * double (a far mask's u is large; as a float, even infinite, it reads as outside) */
+    const struct wave_mask *m = &g->mask;
+    double u0 = 0.0, v0 = 0.0, su = 0.0, sv = 0.0;
+    if (m->amp) {
+        su = 1.0 / m->dx;
+        sv = 1.0 / m->dy;
+        u0 = (cam[0] - m->x0) * su - 0.5;
+        v0 = (cam[1] - m->y0) * sv - 0.5;
+    }
+    for (int k = 0; k < g->nverts; k++) {
+        float *vx = verts + (size_t)k * GRID_FLOATS;
+        float rx = vx[GRID_A_REST], ry = vx[GRID_A_REST + 1];
+        float a = m->amp ? wave_mask_texel_at(m, (float)(u0 + rx * su), (float)(v0 + ry * sv))
+                         : 1.0f;
+        vx[GRID_A_PAD] = a;
+        if (a == 1.0f)
+            continue;
+        float zr = z - sphere_drop(rx * rx + ry * ry);
+        vx[GRID_A_POS + 0] = rx + a * (vx[GRID_A_POS + 0] - rx);
+        vx[GRID_A_POS + 1] = ry + a * (vx[GRID_A_POS + 1] - ry);
+        vx[GRID_A_POS + 2] = zr + a * (vx[GRID_A_POS + 2] - zr);
+        vx[GRID_A_SLOPE + 0] *= a;
+        vx[GRID_A_SLOPE + 1] *= a;
+        vx[GRID_A_SVAR + 0] *= a * a;
+        vx[GRID_A_SVAR + 1] *= a * a;
+    }
+}
+
 int grid_update(struct grid *g, const struct camera_frame *view, double t_s, float *verts)
 {
     const struct camera *cam = &view->cam;
@@ -719,6 +761,8 @@ int grid_update(struct grid *g, const struct camera_frame *view, double t_s, flo
     }
     float foot_disp = nd ? displace(g, df, nd) : -INFINITY;
     write_vertices(g, verts, (float)-cam->pos[2], np > 0, foot_disp);
+    if (g->mask_attr)
+        mask_apply(g, cam->pos, (float)-cam->pos[2], verts);
     if (g->wake.map)
         wake_heights(g, verts);
     row_distances(g);

@@ -150,7 +150,7 @@ static void shade_one(const struct vshade_frame *f, const float *gv, float *o)
     o[VSHADE_GEO + 2] = log2f(2.0f * SKY_MAP_HORIZON * f->sky_map_size /
                               (1.0f + maxf(rz, 0.0f)));
     o[VSHADE_GEO + 3] = t[1];
-    o[VSHADE_FOG + 3] = 0.0f;
+    o[VSHADE_FOG + 3] = gv[GRID_A_PAD];   /* the wave mask's amplitude (grid_set_mask) */
     /* aerial perspective (vterms.glsl): (1 - T) times the horizon sky of the view's azimuth */
     float pxy = maxf(sqrtf(p[0] * p[0] + p[1] * p[1]), 1e-6f);
     float cg = (p[0] * f->sun_dir[0] + p[1] * f->sun_dir[1]) / pxy, ph[2];

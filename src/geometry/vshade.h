@@ -29,7 +29,8 @@
  *   lin   Fresnel-texture uv and sky-map uv at s0; lin_dx, lin_dy: their derivatives in s
  *   sun   zeta_h - s0 (xy), the Ross factor, eq. 25's x weight
  *   fog   low quality: the in-scattered light of the path to the camera, rgb; high: the
- *         haze's Rayleigh and Mie phase weights at the view's azimuth, 0 */
+ *         haze's Rayleigh and Mie phase weights at the view's azimuth, 0; w: the grid's
+ *         GRID_A_PAD (the wave mask's amplitude, grid_set_mask) */
 enum vshade_attr {
     VSHADE_POS = 0, VSHADE_REST = 4, VSHADE_GEO = 8, VSHADE_LIN = 12, VSHADE_LIN_DX = 16,
     VSHADE_LIN_DY = 20, VSHADE_SUN = 24, VSHADE_FOG = 28, VSHADE_FLOATS = 32

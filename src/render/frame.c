@@ -54,6 +54,24 @@ void screen_to_sea(const struct camera_frame *view, double q[3][3])
         }
 }
 
+/* Uniform mat3 loc := aff (a map of the camera-relative sea plane, homogeneous) after
+ * screen_to_sea: gl_FragCoord to aff's coordinates times w. on 0: a zero matrix. */
+void sea_uniform_matrix(const struct camera_frame *view, const double aff[3][3], int on,
+                        GLint loc)
+{
+    double q[3][3];
+    screen_to_sea(view, q);
+    float mat[9] = { 0 };   /* column-major */
+    for (int i = 0; on && i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double s = 0.0;
+            for (int k = 0; k < 3; k++)
+                s += aff[i][k] * q[k][j];
+            mat[3 * j + i] = (float)s;
+        }
+    glUniformMatrix3fv(loc, 1, GL_FALSE, mat);
+}
+
 static void set_vtf_uniforms(struct renderer *r, int variant, const struct camera *cam)
 {
     const GLint *u = r->vu[variant];
@@ -284,6 +302,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     wake_uniforms(r, view, u, foam);
     shadow_uniforms(r, view, u, sea_sun, foam_sun);
     refract_uniforms(r, u);
+    mask_uniforms(r, view, u);
 }
 
 /* The sea, far rows first, one draw per run of rows fetching the same slots (and, with
@@ -422,7 +441,8 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
     struct camera cam_local = *user_cam;
     const struct camera *cam = &cam_local;
     cam_local.surface_z_m = sea_surface_height(r->t, renderer_detile(r), user_cam->pos[0],
-                                             user_cam->pos[1], t_s) +
+                                             user_cam->pos[1], t_s) *
+                            mask_amp_at(r, user_cam->pos[0], user_cam->pos[1]) +
                             wake_height_at(r, user_cam->pos[0], user_cam->pos[1], 0.0f);
     r->camera_raise_m = 0.0;
     if (cam_local.pos[2] < cam_local.surface_z_m + CAMERA_CLEARANCE_M) {
@@ -442,6 +462,7 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
         stream_disp(r, t_s);
     } else {
         wake_grid(r, view.cam.pos, r->grid);
+        mask_grid(r, r->grid);
         nidx = grid_update(r->grid, &view, t_s, r->verts);
         if (nidx > 0 && r->cpu_vterms)   /* the terms of each vertex, on the CPU (vshade.h) */
             vshade_fill(&r->vf, r->verts, grid_vertex_count(r->grid), r->shaded);
@@ -494,7 +515,7 @@ int renderer_draw(struct renderer *r, const struct renderer_view *v, double t_s,
             glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)vbytes, r->verts);
             static const struct { int loc, size, off; } grid_attr[A_GRID_COUNT] = {
                 { A_POS, 3, GRID_A_POS }, { A_REST, 2, GRID_A_REST },
-                { A_GEO_SLOPE, 4, GRID_A_SLOPE }, { A_GEO_K, 2, GRID_A_K }
+                { A_GEO_SLOPE, 4, GRID_A_SLOPE }, { A_GEO_K, 3, GRID_A_K }  /* k; the mask */
             };
             for (int a = 0; a < A_GRID_COUNT; a++) {
                 glEnableVertexAttribArray((GLuint)grid_attr[a].loc);

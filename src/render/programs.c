@@ -28,7 +28,8 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "refl_screen", "refl_ray", "refl_down", "refl_blur", "refl_levels",
     "refl_axes", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam", "foam_gain", "foam_gain_v",
     "wake_warp", "shadow_tex", "shadow_mat", "shadow_sea", "shadow_foam",
-    "refr_tex", "refr_screen", "refr_shift", "refr_tau"
+    "refr_tex", "refr_screen", "refr_shift", "refr_tau", "mask_tex", "mask_mat", "mask_foam",
+    "mask_foam_v"
 };
 static const char *const sky_uniform_names[SU_COUNT] = {
     "clip_to_world_rel", "sky_view", "sky_view_scale", "sky_sun", "sun_ndc", "sun_display"
@@ -82,7 +83,7 @@ const char *program_tags(const struct renderer *r)
         " cpu-vertex objects", " no-detile objects", " cpu-vertex no-detile objects"
     };
     int cpu = r->cpu_vterms && !r->vtf, off = !renderer_detile(r);
-    int obj = r->d.reflections || r->d.wakes || r->d.shadows || r->d.refractions;
+    int obj = renderer_objects(r);
     return tags[cpu | off << 1 | obj << 2];
 }
 
@@ -108,7 +109,7 @@ int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = (int)(sizeof(ocean_attribs) / sizeof(ocean_attribs[0]));
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s%s%s",
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s%s%s%s",
                              k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
                              r->run_lod ? " SWELL_RUN_LOD" : "",
                              renderer_detile(r) ? "" : " SWELL_NO_DETILE",
@@ -118,7 +119,8 @@ int build_programs(struct renderer *r, struct swell_err *err)
                                               : "",
                              r->d.wakes ? " SWELL_WAKE" : "",
                              r->d.shadows ? " SWELL_SHADOW" : "",
-                             r->d.refractions ? " SWELL_REFRACT" : "");
+                             r->d.refractions ? " SWELL_REFRACT" : "",
+                             r->d.wave_mask ? " SWELL_MASK" : "");
             int v = VARIANT(k, kw);
             if (r->vtf)
                 snprintf(defines + n, sizeof(defines) - (size_t)n, " VTF_PATTERNS=%d",
@@ -235,7 +237,7 @@ int probe_programs(struct renderer *r, struct swell_err *err)
                     n += px[4 * i + 3] > 0;
                 covered = n > PROBE_SIZE * PROBE_SIZE / 2;
             }
-            int objects = r->d.reflections || r->d.wakes || r->d.shadows || r->d.refractions;
+            int objects = renderer_objects(r);
             unsigned refuse = r->d.probe_refuse |
                               (renderer_detile(r) ? r->d.probe_refuse_detile : 0u) |
                               (r->cpu_vterms ? 0u : r->d.probe_refuse_gpu_vertex) |

@@ -75,6 +75,8 @@ void renderer_destroy(struct renderer *r)
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
     reflect_destroy(r);
     wake_destroy(r);
+    mask_destroy(r);
+    free(r->mask_bytes);
     shadow_destroy(r);
     refract_destroy(r);
     free(r->scratch);
@@ -147,7 +149,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     int first = desc->texture_unit_first, count = desc->texture_unit_count;
     int least = UNIT_PATTERNS_OF(desc->reflections, desc->wakes, desc->shadows,
-                                 desc->refractions) + 1;
+                                 desc->refractions, desc->wave_mask) + 1;
     if (first < 0 || count < 0 || (count > 0 && count < least) ||
         first + (count > 0 ? count : least) > combined)
         return swell_fail(err, SWELL_E_ARG, "renderer: texture units %d..%d: the device has "
@@ -182,6 +184,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
         (rc = reflect_create(r, err)) || (rc = wake_create(r, err)) ||
         (rc = shadow_create(r, err)) || (rc = refract_create(r, err)) ||
+        (rc = mask_create(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
         (rc = probe_programs(r, err)))
         goto fail;
@@ -437,15 +440,16 @@ int renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uin
     }
     int asked = d->quality;
     rc = other_quality(rc, d, out, note, user, err);
-    if (rc == SWELL_E_SHADER && (d->reflections || d->wakes || d->shadows || d->refractions)) {
+    if (rc == SWELL_E_SHADER && (d->reflections || d->wakes || d->shadows || d->refractions ||
+                                 d->wave_mask)) {
         /* no program with the objects' passes runs here (GC2000: over its 256 instructions):
          * the sea without them rather than none; the passes then say why they fail */
         snprintf(msg, sizeof msg, "%s\nthe ocean's programs with the objects' passes "
-                 "(reflections, wakes, shadows, refractions) do not run on this GPU; trying the "
-                 "sea without them", err ? err->msg : "");
+                 "(reflections, wakes, shadows, refractions, the wave mask) do not run on this "
+                 "GPU; trying the sea without them", err ? err->msg : "");
         if (note)
             note(user, msg);
-        d->reflections = d->wakes = d->shadows = d->refractions = 0;
+        d->reflections = d->wakes = d->shadows = d->refractions = d->wave_mask = 0;
         d->quality = asked;
         rc = other_quality(renderer_create(d, out, err), d, out, note, user, err);
         if (!rc)
@@ -458,13 +462,14 @@ int renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uin
 
 int renderer_objects(const struct renderer *r)
 {
-    return r->d.reflections || r->d.wakes || r->d.shadows || r->d.refractions;
+    return r->d.reflections || r->d.wakes || r->d.shadows || r->d.refractions ||
+           r->d.wave_mask;
 }
 
 int renderer_objects_refused(const struct renderer *r, const char *what, struct swell_err *err)
 {
     return swell_fail(err, SWELL_E_ARG, "renderer: no %s: this GPU's driver refused every ocean "
                       "program with the objects' passes, so the sea is drawn without "
-                      "reflections, wakes, shadows and refractions (its messages were at "
-                      "creation)", what);
+                      "reflections, wakes, shadows, refractions and the wave mask (its messages "
+                      "were at creation)", what);
 }

@@ -144,15 +144,5 @@ void shadow_uniforms(const struct renderer *r, const struct camera_frame *view, 
              u[OU_SHADOW_TEX]);
     glUniform3fv(u[OU_SHADOW_SEA], 1, sea_sun);
     glUniform3fv(u[OU_SHADOW_FOAM], 1, foam_sun);
-    double q[3][3];
-    screen_to_sea(view, q);
-    float mat[9] = { 0 };
-    for (int i = 0; on && i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double s = 0.0;
-            for (int k = 0; k < 3; k++)
-                s += r->shadow_aff[i][k] * q[k][j];
-            mat[3 * j + i] = (float)s;
-        }
-    glUniformMatrix3fv(u[OU_SHADOW_MAT], 1, GL_FALSE, mat);
+    sea_uniform_matrix(view, r->shadow_aff, on, u[OU_SHADOW_MAT]);
 }

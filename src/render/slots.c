@@ -178,7 +178,7 @@ int choose_vtf(const struct renderer *r)
     int n = r->t->patterns;
     int hash = renderer_detile(r);
     if (r->d.cpu_geometry || r->d.geometry != GEOMETRY_GRID || r->cpu_mask || low_foam_mask(r) ||
-        r->d.wakes ||
+        r->d.wakes || r->d.wave_mask ||
         r->gpu->caps.vertex_texture_units < 2 * n + hash)
         return 0;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);

@@ -173,10 +173,7 @@ void wake_uniforms(const struct renderer *r, const struct camera_frame *view, co
     float k[3] = { (float)(-c * (f[0] + l[0])), (float)(-c * (f[1] + l[1])), (float)(sc * sc) };
     glUniform4fv(u[OU_WAKE_ROT], 1, rot);
     glUniform3fv(u[OU_WAKE_K], 1, k);
-    /* gl_FragCoord -> the flat sea's point (frame.c) */
-    double q[3][3];
-    screen_to_sea(view, q);
-    /* -> the hull's frame, x, y the point less the hull's position along f and l, and the
+    /* gl_FragCoord -> the flat sea's point (frame.c) -> the hull's frame, x, y the point less the hull's position along f and l, and the
      * map's P = (front - x) / span, Q = y / span (kelvin.h), Q over the spread: ocean.frag
      * takes u, v from them */
     double cb[2] = { view->cam.pos[0] - r->wake.pos[0], view->cam.pos[1] - r->wake.pos[1] };
@@ -187,14 +184,6 @@ void wake_uniforms(const struct renderer *r, const struct camera_frame *view, co
         { l[0] / (sp * spr), l[1] / (sp * spr), (cb[0] * l[0] + cb[1] * l[1]) / (sp * spr) },
         { 0.0, 0.0, 1.0 },
     };
-    float mat[9];   /* column-major */
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double s = 0.0;
-            for (int k2 = 0; k2 < 3; k2++)
-                s += aff[i][k2] * q[k2][j];
-            mat[3 * j + i] = (float)s;
-        }
-    glUniformMatrix3fv(u[OU_WAKE_MAT], 1, GL_FALSE, mat);
+    sea_uniform_matrix(view, aff, 1, u[OU_WAKE_MAT]);
     glUniform4fv(u[OU_WAKE_WARP], 1, r->wake_warp);
 }

@@ -159,6 +159,17 @@ values swell --kms-api modern "" ATOMIC
 needs_value swell --device
 needs_value swell --connector
 usage swell --bogus 1 "unknown option"
+# (each refused by its own check, "--mask-area: ...", not by the missing --mask)
+needs_value swell --mask-area
+for v in 0,0,0,10 0,0,10,-1 0,0,2e6,10 nan,0,10,10 0,inf,10,10 1,2,3 1,2,3,4,5 "" a,b,c,d; do
+    usage swell --mask-area "$v" "--mask-area:"
+done
+usage swell --mask "" --mask
+out=$("$S" --platform surfaceless --size 64x64 --frames 1 --out "$T/never.png" \
+      --mask docs/lee-mask.png 2>&1); rc=$?
+if [ $rc -eq 2 ] && [ ! -e "$T/never.png" ] && printf '%s' "$out" | grep -q -- --mask-area; then
+    ok "swell: --mask without --mask-area is a usage error ($out)"
+else bad "swell: --mask without --mask-area: exit $rc, wanted 2 naming --mask-area: $out"; fi
 out=$("$S" --platform surfaceless --frames 3 --out "$T/never.png" 2>&1); rc=$?
 check "swell: several frames into one file is a usage error ($out)" \
     sh -c "[ $rc -eq 2 ] && ! [ -e '$T/never.png' ] && printf '%s' '$out' | grep -q -- --out"
@@ -323,6 +334,19 @@ runtime_error() {
 }
 
 : > "$T/afile"
+# the wave mask's image: missing, not a PNG, over 254 pixels a side (a 300 x 16 frame of swell's)
+runtime_error "swell --mask of a missing file" "nothere.png" \
+    swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" \
+    --mask "$T/nothere.png" --mask-area 0,0,100,100 --out "$T/never.png"
+runtime_error "swell --mask of a file that is no PNG" "--mask" \
+    swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" \
+    --mask "$T/afile" --mask-area 0,0,100,100 --out "$T/never.png"
+swell --platform surfaceless --size 300x16 --frames 1 --tables "$T/good" --out "$T/wide.png" \
+    > /dev/null 2>&1
+runtime_error "swell --mask of 300 x 16 pixels" "at most 254 x 254" \
+    swell --platform surfaceless --size 64x64 --frames 1 --tables "$T/good" \
+    --mask "$T/wide.png" --mask-area 0,0,100,100 --out "$T/never.png"
+check "  ... and no frame written" [ ! -e "$T/never.png" ]
 # shellcheck disable=SC2086
 runtime_error "bake into a path under a regular file" "afile" \
     "$B" $SMALL --out "$T/afile/tables"

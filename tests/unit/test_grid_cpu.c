@@ -14,6 +14,7 @@
 #include <cmocka.h>
 #include "geometry/detile.h"
 #include "geometry/grid.h"
+#include "geometry/mask.h"
 #include "tables/quantize.h"
 #include "geometry/sea.h"
 #include "tables/stream.h"
@@ -690,6 +691,92 @@ static void test_warp(void **state)
     assert_true(fabs(grid_warp(1.0, a, k, 4) - 2.0) < 1e-12);
 }
 
+/* Issue 18, locally varying wave parameters (geometry/mask.h, grid_set_mask): every vertex of
+ * the grid with a mask is the open sea's scaled by the mask's amplitude a at its rest point
+ * (world: the camera's position plus it): its displacement from the rest point times a, the CPU
+ * pattern's mean slope times a and its resolved variance times a^2, the foam memory's moments
+ * as they were, a itself in GRID_A_PAD. A mask of a ramp (0 to 255 across 8 texels of 40 m)
+ * with a calm hole, seen so the grid spans it. Fails with a read at the camera-relative point
+ * (tried: 3,000 vertices off) or the variance times a (off by a). */
+static void test_grid_mask(void **state)
+{
+    (void)state;
+    struct swell_tables s;
+    struct grid *g;
+    struct grid_desc d = { 0 };
+    struct swell_err err;
+    make_tables(&s);
+    d.tables = &s;
+    d.w = 33;
+    d.h = 25;
+    d.cpu_patterns = 1u;
+    assert_int_equal(grid_create(&d, &g, &err), 0);
+    size_t nf = (size_t)grid_vertex_count(g) * GRID_FLOATS;
+    float *open = calloc(nf, sizeof(float)), *masked = calloc(nf, sizeof(float));
+    uint8_t amp[8 * 4];
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 8; i++)
+            amp[8 * j + i] = (uint8_t)((i == 3 || i == 4) && (j == 1 || j == 2) ? 0 : 255 * i / 7);
+    struct wave_mask m;
+    const double origin[2] = { 900.0, -560.0 }, size[2] = { 320.0, 160.0 };
+    assert_int_equal(wave_mask_init(&m, "test", amp, 8, 4, origin, size, &err), 0);
+    struct camera c;
+    camera_defaults(&c);
+    c.pos[0] = 1000.0;
+    c.pos[1] = -620.0;
+    c.pos[2] = 20.0;
+    c.heading_deg = 90.0f;
+    c.pitch_deg = -25.0f;
+    const struct camera_frame *view = frame_of(&c);
+    assert_true(grid_update(g, view, 1.3, open) > 0);
+    grid_set_mask(g, 1, &m);
+    assert_true(grid_update(g, view, 1.3, masked) > 0);
+    int n = 0, scaled = 0, calm = 0;
+    double worst = 0.0;
+    for (int k = 0; k < grid_vertex_count(g); k++) {
+        const float *o = open + (size_t)k * GRID_FLOATS, *v = masked + (size_t)k * GRID_FLOATS;
+        assert_float_equal(o[GRID_A_REST], v[GRID_A_REST], 0.0f);
+        assert_float_equal(o[GRID_A_REST + 1], v[GRID_A_REST + 1], 0.0f);
+        double a = wave_mask_at(&m, c.pos[0] + v[GRID_A_REST], c.pos[1] + v[GRID_A_REST + 1]);
+        double r2 = (double)v[GRID_A_REST] * v[GRID_A_REST] +
+                    (double)v[GRID_A_REST + 1] * v[GRID_A_REST + 1];
+        double re = EARTH_RADIUS_M, base[3] = { v[GRID_A_REST], v[GRID_A_REST + 1],
+                                                 -c.pos[2] - r2 / (re + sqrt(re * re - r2)) };
+        assert_float_equal(v[GRID_A_PAD], a, 2e-5);   /* (its texel coordinates in float) */
+        for (int e = 0; e < 3; e++) {
+            double want = base[e] + a * (o[GRID_A_POS + e] - base[e]);
+            worst = fmax(worst, fabs(v[GRID_A_POS + e] - want));
+        }
+        for (int e = 0; e < 2; e++) {
+            assert_float_equal(v[GRID_A_SLOPE + e], a * o[GRID_A_SLOPE + e],
+                               1e-6 + 1e-5 * fabs(o[GRID_A_SLOPE + e]));
+            assert_float_equal(v[GRID_A_SVAR + e], a * a * o[GRID_A_SVAR + e],
+                               1e-9 + 1e-5 * fabs(o[GRID_A_SVAR + e]));
+            assert_float_equal(v[GRID_A_K + e], o[GRID_A_K + e], 0.0f);
+        }
+        n++;
+        scaled += a > 0.02 && a < 0.98;
+        calm += a == 0.0;
+    }
+    print_message("wave mask on the grid: %d vertices, %d at 0 < a < 1, %d calm (a = 0); the "
+                  "displacement off a times the open sea's by at most %.2e m\n", n, scaled,
+                  calm, worst);
+    assert_true(scaled > 50 && calm > 3);
+    assert_true(worst < 2e-3);
+    /* on with no mask: a = 1, the open sea's vertices */
+    grid_set_mask(g, 1, NULL);
+    assert_true(grid_update(g, view, 1.3, masked) > 0);
+    for (size_t k = 0; k < nf; k++)
+        if (k % GRID_FLOATS == GRID_A_PAD)
+            assert_float_equal(masked[k], 1.0f, 0.0f);
+        else
+            assert_float_equal(masked[k], open[k], 0.0f);
+    free(open);
+    free(masked);
+    grid_destroy(g);
+    tables_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -700,6 +787,7 @@ int main(void)
         cmocka_unit_test(test_patches),
         cmocka_unit_test(test_sea_query),
         cmocka_unit_test(test_warp),
+        cmocka_unit_test(test_grid_mask),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
