@@ -270,9 +270,9 @@ typedef struct swell_ocean_desc {
                                  * grid displaced on the CPU on every tier; default 0 */
     int wave_mask;              /* 1: the waves' amplitude varies by a coarse mask
                                  * (swell_ocean_set_mask; calmer water in an island's lee):
-                                 * one more texture unit, the mask's texture (341 KiB)
-                                 * and the grid displaced on the CPU on every tier, as with
-                                 * wakes; default 0 */
+                                 * no texture unit (the mask joins the Fresnel atlas, which
+                                 * grows by 384 KiB), the grid displaced on the CPU on every
+                                 * tier, as with wakes; default 0 */
     int shadows;                /* 1: the application's objects shadow the sun on the sea
                                  * (swell_ocean_begin_shadow): one more texture unit and a
                                  * 512 x 512 RGBA8 target with mipmaps and 16-bit depth

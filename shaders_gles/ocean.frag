@@ -85,9 +85,9 @@ uniform mat2 refr_shift;            // the slope deviation -> the map's uv shift
 uniform vec3 refr_tau;              // each channel's beam attenuation over green's
 #endif
 #ifdef SWELL_MASK
-uniform sampler2D mask_tex;         // the wave mask's amplitude, a border of 1 around,
-                                    // mipmapped, clamped (mask.c)
-uniform mat3 mask_mat;              // gl_FragCoord -> the flat sea's point's uv times w
+uniform vec4 mask_box;              // the wave mask's block in the Fresnel atlas (a border of
+                                    // 1 around it, mask.c): its border texels' centres
+uniform mat3 mask_mat;              // gl_FragCoord -> the flat sea's point's atlas uv times w
 uniform float mask_foam;            // the whitecap coverage's exponent of a (geometry/mask.h)
 #endif
 #ifdef SWELL_SHADOW
@@ -498,12 +498,13 @@ vec4 wake_sample()
 
 
 #ifdef SWELL_MASK
-// The wave mask's amplitude a at the flat sea's point under the pixel (mask.c); above the
-// horizon (w <= 0) the open sea.
+// The wave mask's amplitude a at the flat sea's point under the pixel (mask.c): its block of
+// the Fresnel atlas read within its border (255, the open sea), so beyond the mask the open
+// sea; above the horizon (w <= 0) the open sea.
 float mask_amp()
 {
     vec3 h = mask_mat * vec3(gl_FragCoord.xy, 1.0);
-    float a = texture2D(mask_tex, h.xy / max(h.z, 1e-3)).a;
+    float a = texture2D(fresnel_tex, clamp(h.xy / max(h.z, 1e-3), mask_box.xy, mask_box.zw)).a;
     return mix(1.0, a, step(0.0, h.z));
 }
 #endif

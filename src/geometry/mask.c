@@ -44,10 +44,24 @@ float wave_mask_texel_at(const struct wave_mask *m, float u, float v)
     /* the four texels read all lie outside (255) unless floor(u) is in [-1, w - 1] */
     if (!(u >= -1.0f && v >= -1.0f && u < (float)m->w && v < (float)m->h))
         return 1.0f;
-    float fi = floorf(u), fj = floorf(v), fu = u - fi, fv = v - fj;
-    long i = (long)fi, j = (long)fj;
-    float t00 = texel(m, i, j), t10 = texel(m, i + 1, j);
-    float t01 = texel(m, i, j + 1), t11 = texel(m, i + 1, j + 1);
+    /* floor by truncation of u + 1 >= 0 (no libm call), and the four texels read directly
+     * inside the mask: this function 0.43 -> 0.30 M instructions a frame in the grid's pass
+     * (grid_set_mask; callgrind, README.md's mask view) */
+    long i = (long)(u + 1.0f) - 1, j = (long)(v + 1.0f) - 1;
+    float fu = u - (float)i, fv = v - (float)j;
+    float t00, t10, t01, t11;
+    if (i >= 0 && j >= 0 && i + 1 < m->w && j + 1 < m->h) {
+        const uint8_t *p = m->amp + (size_t)j * (size_t)m->w + (size_t)i;
+        t00 = p[0];
+        t10 = p[1];
+        t01 = p[m->w];
+        t11 = p[m->w + 1];
+    } else {
+        t00 = texel(m, i, j);
+        t10 = texel(m, i + 1, j);
+        t01 = texel(m, i, j + 1);
+        t11 = texel(m, i + 1, j + 1);
+    }
     float a = t00 + fu * (t10 - t00), b = t01 + fu * (t11 - t01);
     return (a + fv * (b - a)) * (1.0f / 255.0f);
 }

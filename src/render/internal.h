@@ -38,7 +38,7 @@ enum ocean_uniform {
     OU_REFL_SCREEN, OU_REFL_RAY, OU_REFL_DOWN, OU_REFL_BLUR,
     OU_REFL_LEVELS, OU_REFL_AXES, OU_WAKE_TEX, OU_WAKE_MAT, OU_WAKE_ROT, OU_WAKE_K, OU_WAKE_FOAM, OU_FOAM_GAIN, OU_FOAM_GAIN_V,
     OU_WAKE_WARP, OU_SHADOW_TEX, OU_SHADOW_MAT, OU_SHADOW_SEA, OU_SHADOW_FOAM,
-    OU_REFR_TEX, OU_REFR_SCREEN, OU_REFR_SHIFT, OU_REFR_TAU, OU_MASK_TEX, OU_MASK_MAT,
+    OU_REFR_TEX, OU_REFR_SCREEN, OU_REFR_SHIFT, OU_REFR_TAU, OU_MASK_BOX, OU_MASK_MAT,
     OU_MASK_FOAM, OU_MASK_FOAM_V,
     OU_COUNT
 };
@@ -124,20 +124,18 @@ struct pass_saved {
     GLboolean depth_mask, scissor;
 };
 
-/* Texture units: 0 Fresnel, 1 sky, 2 the reflection map where renderer_desc reflections asks
- * for one (reflect.c), then the wake's map where wakes asks (wake.c), the shadow map where
- * shadows asks (shadow.c), the refraction map where refractions asks (refract.c), the wave
- * mask where wave_mask asks (mask.c), then slope/whitecap per fragment pattern slot
- * (unit_patterns). */
+/* Texture units: 0 Fresnel (an atlas with the lattice's hash and the wave mask, textures.c),
+ * 1 sky, 2 the reflection map where renderer_desc reflections asks for one (reflect.c), then
+ * the wake's map where wakes asks (wake.c), the shadow map where shadows asks (shadow.c), the
+ * refraction map where refractions asks (refract.c), then slope/whitecap per fragment pattern
+ * slot (unit_patterns). */
 enum { UNIT_FRESNEL = 0, UNIT_SKY = 1, UNIT_REFLECT = 2 };
 #define UNIT_WAKE_OF(reflections) (2 + ((reflections) != 0))
 #define UNIT_SHADOW_OF(reflections, wakes) (UNIT_WAKE_OF(reflections) + ((wakes) != 0))
 #define UNIT_REFRACT_OF(reflections, wakes, shadows) \
     (UNIT_SHADOW_OF(reflections, wakes) + ((shadows) != 0))
-#define UNIT_MASK_OF(reflections, wakes, shadows, refractions) \
+#define UNIT_PATTERNS_OF(reflections, wakes, shadows, refractions) \
     (UNIT_REFRACT_OF(reflections, wakes, shadows) + ((refractions) != 0))
-#define UNIT_PATTERNS_OF(reflections, wakes, shadows, refractions, mask) \
-    (UNIT_MASK_OF(reflections, wakes, shadows, refractions) + ((mask) != 0))
 
 #define SLOT_LEVELS 16                /* mip levels a run key holds (4 bits per table) */
 #define VAR_KNOTS 4                   /* low quality's pixel variance per run (pixel_var_at) */
@@ -210,6 +208,7 @@ struct renderer {
     uint8_t *scratch;                 /* derived textures are built here */
     struct swell_table fresnel_own;   /* built here only when the tables lack one */
     int atlas_w, atlas_h;             /* the Fresnel textures' atlas (atlas_size) */
+    int mask_x;                       /* the wave mask's block in it, its first column */
     int nfs;                          /* patterns shaded from textures, largest first */
     int nwc;                          /* leading slots whose whitecaps are fetched (high) */
     unsigned cpu_mask;                /* patterns resolved per vertex */
@@ -288,9 +287,7 @@ struct renderer {
     float refr_shift[4];              /* mat2: the slope deviation -> the map's uv shift */
     float refr_tau[3];                /* each channel's beam attenuation over green's */
     struct pass_saved refr_saved;
-    /* The wave mask (mask.c, renderer_desc wave_mask) */
-    GLuint mask_tex;                  /* the mask with a border of 255, POT, clamped */
-    int mask_tw, mask_th;             /* its texels (1 x 1: no mask set) */
+    /* The wave mask (mask.c, renderer_desc wave_mask): its texels in the Fresnel atlas */
     uint8_t *mask_bytes;              /* the application's bytes, copied */
     struct wave_mask mask;            /* over mask_bytes; mask.amp NULL: none set */
 };
@@ -304,8 +301,7 @@ static inline int pass_open(const struct renderer *r)
 /* The first unit of the pattern slots' tables. */
 static inline int unit_patterns(const struct renderer *r)
 {
-    return UNIT_PATTERNS_OF(r->d.reflections, r->d.wakes, r->d.shadows, r->d.refractions,
-                            r->d.wave_mask);
+    return UNIT_PATTERNS_OF(r->d.reflections, r->d.wakes, r->d.shadows, r->d.refractions);
 }
 
 /* One LOD per run (SWELL_RUN_LOD): each fetched table at the mip level nearest the LOD the
@@ -404,8 +400,8 @@ void shadow_uniforms(const struct renderer *r, const struct camera_frame *view, 
                      const float sea_sun[3], const float foam_sun[3]);
 
 /* mask.c */
-int mask_create(struct renderer *r, struct swell_err *err);
-void mask_destroy(struct renderer *r);
+#define MASK_TEX 256                  /* the mask's block in the atlas: WAVE_MASK_MAX + a border */
+void mask_block(const struct wave_mask *m, uint8_t *out, size_t row_bytes);
 void mask_grid(const struct renderer *r, struct grid *g);
 float mask_amp_at(const struct renderer *r, double x, double y);
 void mask_uniforms(const struct renderer *r, const struct camera_frame *view, const GLint *u);

@@ -1,89 +1,33 @@
 /* mask.c - locally varying wave parameters by a coarse mask (issue 18; Bruneton et al. 2010
  * §6; geometry/mask.h says what the amplitude a scales and how).
  *
- * The application's bytes go into a 256 x 256 RGBA8 texture at texels 1..w, 1..h, with 255
- * (the open sea) all around, and a mip chain of box means (the sea far away reads the area's
- * mean amplitude, as its slope variance is an area's). ocean.frag (SWELL_MASK) reads it at the
- * flat sea's point under the pixel (one 3 x 3 matrix from gl_FragCoord, as the wake's, wake.c)
- * and scales the pixel's fetched slopes and variances; the grid on the CPU scales each vertex
- * (grid_set_mask), whose amplitude ocean.vert takes to scale the variances it adds. So an
- * ocean with a mask keeps the CPU grid on every tier (choose_vtf). */
+ * The application's bytes go into a MASK_TEX-square block of the Fresnel atlas (textures.c) at
+ * texels 1..w, 1..h of it, with 255 (the open sea) all around: no texture unit of its own (on
+ * gles2-min one more unit moved a wave pattern's shading to the CPU). The atlas has no mips, so
+ * far away, where a pixel spans several of the mask's texels, the pixel reads a bilinear sample
+ * of the mask, not its mean (a coarse, smooth mask does not alias). ocean.frag (SWELL_MASK)
+ * reads it at the flat sea's point under the pixel (one 3 x 3 matrix from gl_FragCoord, as the
+ * wake's, wake.c), the coordinates clamped to the block's border texels, and scales the
+ * pixel's fetched slopes and variances; the grid on the CPU scales each vertex (grid_set_mask),
+ * whose amplitude ocean.vert takes to scale the variances it adds. So an ocean with a mask
+ * keeps the CPU grid on every tier (choose_vtf). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "bake/whitecap.h"
 #include "render/internal.h"
 
-#define MASK_TEX 256
-
-static int mask_levels(void)
+/* The block for mask m (no bytes: 255 everywhere) into out, rows row_bytes apart. */
+void mask_block(const struct wave_mask *m, uint8_t *out, size_t row_bytes)
 {
-    int l = 1;
-    while (MASK_TEX >> l)
-        l++;
-    return l;
-}
-
-void mask_destroy(struct renderer *r)
-{
-    gpu_texture_destroy(r->gpu, &r->mask_tex);
-}
-
-/* The texture's chain for mask m (NULL: 255 everywhere) into *out (malloc'd). */
-static uint8_t *mask_chain(const struct wave_mask *m)
-{
-    size_t total = 0;
-    for (int l = 0; l < mask_levels(); l++)
-        total += 4 * (size_t)(MASK_TEX >> l) * (size_t)(MASK_TEX >> l);
-    uint8_t *c = malloc(total);
-    if (!c)
-        return NULL;
-    memset(c, 255, 4 * (size_t)MASK_TEX * MASK_TEX);
-    if (m)
-        for (int j = 0; j < m->h; j++)
-            for (int i = 0; i < m->w; i++)
-                memset(c + 4 * ((size_t)(j + 1) * MASK_TEX + (size_t)(i + 1)),
-                       m->amp[(size_t)j * (size_t)m->w + (size_t)i], 4);
-    uint8_t *prev = c;
-    for (int l = 1, s = MASK_TEX / 2; l < mask_levels(); l++, s /= 2) {
-        uint8_t *cur = prev + 4 * (size_t)(2 * s) * (size_t)(2 * s);
-        for (int y = 0; y < s; y++)
-            for (int x = 0; x < s; x++) {
-                const uint8_t *p = prev + 4 * ((size_t)(2 * y) * (size_t)(2 * s) + 2 * (size_t)x);
-                int sum = p[0] + p[4] + p[8 * s] + p[8 * s + 4];
-                memset(cur + 4 * ((size_t)y * (size_t)s + (size_t)x), (sum + 2) / 4, 4);
-            }
-        prev = cur;
+    for (int y = 0; y < MASK_TEX; y++) {
+        uint8_t *o = out + (size_t)y * row_bytes;
+        memset(o, 255, 4 * (size_t)MASK_TEX);
+        if (!m->amp || y < 1 || y > m->h)
+            continue;
+        for (int i = 0; i < m->w; i++)
+            memset(o + 4 * (size_t)(i + 1), m->amp[(size_t)(y - 1) * (size_t)m->w + (size_t)i], 4);
     }
-    return c;
-}
-
-static int mask_upload(struct renderer *r, const struct wave_mask *m, struct swell_err *err)
-{
-    uint8_t *c = mask_chain(m);
-    if (!c)
-        return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for the wave mask");
-    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first +
-                                           UNIT_MASK_OF(r->d.reflections, r->d.wakes,
-                                                        r->d.shadows, r->d.refractions)));
-    struct chain_tex ct = { { r->mask_tex }, 0 };   /* one texture, its levels */
-    int rc = upload_chain(&ct, MASK_TEX, MASK_TEX, mask_levels(), c,
-                          "renderer: wave mask upload", err);
-    free(c);
-    return rc;
-}
-
-/* The texture, allocated and filled with the open sea here, so the budget counts it. */
-int mask_create(struct renderer *r, struct swell_err *err)
-{
-    if (!r->d.wave_mask)
-        return 0;
-    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first +
-                                           UNIT_MASK_OF(r->d.reflections, r->d.wakes,
-                                                        r->d.shadows, r->d.refractions)));
-    int rc = gpu_texture_create(r->gpu, MASK_TEX, MASK_TEX, mask_levels(), FORMAT_RGBA8, 0,
-                                "wave mask", &r->mask_tex, err);
-    return rc ? rc : mask_upload(r, NULL, err);
 }
 
 int renderer_set_mask(struct renderer *r, const struct wave_mask *m, struct swell_err *err)
@@ -106,7 +50,20 @@ int renderer_set_mask(struct renderer *r, const struct wave_mask *m, struct swel
         mc = *m;
         mc.amp = copy;
     }
-    int rc = mask_upload(r, m ? &mc : NULL, err);
+    /* the block into the atlas (on the Fresnel unit, the renderer's own) */
+    uint8_t *block = malloc(4 * (size_t)MASK_TEX * MASK_TEX);
+    if (!block) {
+        free(copy);
+        return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for the wave mask");
+    }
+    mask_block(&mc, block, 4 * (size_t)MASK_TEX);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_FRESNEL));
+    glBindTexture(GL_TEXTURE_2D, r->fresnel_tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, r->mask_x, 0, MASK_TEX, MASK_TEX, GL_RGBA,
+                    GL_UNSIGNED_BYTE, block);
+    free(block);
+    int rc = gpu_check("renderer: wave mask upload", err);
     if (rc) {
         free(copy);
         return rc;
@@ -136,21 +93,23 @@ void mask_uniforms(const struct renderer *r, const struct camera_frame *view, co
 {
     if (!r->d.wave_mask)
         return;
-    bind_tex(r, UNIT_MASK_OF(r->d.reflections, r->d.wakes, r->d.shadows, r->d.refractions),
-             r->mask_tex, u[OU_MASK_TEX]);
     /* the whitecap coverage's exponent b / 2 (geometry/mask.h) */
     float e = (float)(0.5 * whitecap_model_exponent(r->t->state.whitecap_model));
     glUniform1f(u[OU_MASK_FOAM], e);
     glUniform1f(u[OU_MASK_FOAM_V], e);
-    /* gl_FragCoord -> the flat sea's camera-relative point (frame.c) -> the texture's uv: the
-     * application's texel i at texel i + 1 (the border) */
+    /* gl_FragCoord -> the flat sea's camera-relative point (frame.c) -> the atlas's uv: the
+     * application's texel i at the block's texel i + 1 (the border), the block from column
+     * mask_x; read within the centres of its border texels */
     const struct wave_mask *m = &r->mask;
     double dx = m->amp ? m->dx : 1.0, dy = m->amp ? m->dy : 1.0;
     double x0 = m->amp ? m->x0 : 0.0, y0 = m->amp ? m->y0 : 0.0;
+    double aw = r->atlas_w, ah = r->atlas_h;
     double aff[3][3] = {
-        { 1.0 / (dx * MASK_TEX), 0.0, ((view->cam.pos[0] - x0) / dx + 1.0) / MASK_TEX },
-        { 0.0, 1.0 / (dy * MASK_TEX), ((view->cam.pos[1] - y0) / dy + 1.0) / MASK_TEX },
+        { 1.0 / (dx * aw), 0.0, ((view->cam.pos[0] - x0) / dx + 1.0 + r->mask_x) / aw },
+        { 0.0, 1.0 / (dy * ah), ((view->cam.pos[1] - y0) / dy + 1.0) / ah },
         { 0.0, 0.0, 1.0 },
     };
     sea_uniform_matrix(view, aff, 1, u[OU_MASK_MAT]);
+    glUniform4f(u[OU_MASK_BOX], (float)((r->mask_x + 0.5) / aw), (float)(0.5 / ah),
+                (float)((r->mask_x + MASK_TEX - 0.5) / aw), (float)((MASK_TEX - 0.5) / ah));
 }

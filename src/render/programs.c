@@ -28,7 +28,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "refl_screen", "refl_ray", "refl_down", "refl_blur", "refl_levels",
     "refl_axes", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam", "foam_gain", "foam_gain_v",
     "wake_warp", "shadow_tex", "shadow_mat", "shadow_sea", "shadow_foam",
-    "refr_tex", "refr_screen", "refr_shift", "refr_tau", "mask_tex", "mask_mat", "mask_foam",
+    "refr_tex", "refr_screen", "refr_shift", "refr_tau", "mask_box", "mask_mat", "mask_foam",
     "mask_foam_v"
 };
 static const char *const sky_uniform_names[SU_COUNT] = {

@@ -75,7 +75,6 @@ void renderer_destroy(struct renderer *r)
     gpu_texture_destroy(r->gpu, &r->fresnel_tex);
     reflect_destroy(r);
     wake_destroy(r);
-    mask_destroy(r);
     free(r->mask_bytes);
     shadow_destroy(r);
     refract_destroy(r);
@@ -149,7 +148,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
     int first = desc->texture_unit_first, count = desc->texture_unit_count;
     int least = UNIT_PATTERNS_OF(desc->reflections, desc->wakes, desc->shadows,
-                                 desc->refractions, desc->wave_mask) + 1;
+                                 desc->refractions) + 1;
     if (first < 0 || count < 0 || (count > 0 && count < least) ||
         first + (count > 0 ? count : least) > combined)
         return swell_fail(err, SWELL_E_ARG, "renderer: texture units %d..%d: the device has "
@@ -184,7 +183,6 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
     if ((rc = grid_create(&gd, &r->grid, err)) || (rc = create_textures(r, err)) ||
         (rc = reflect_create(r, err)) || (rc = wake_create(r, err)) ||
         (rc = shadow_create(r, err)) || (rc = refract_create(r, err)) ||
-        (rc = mask_create(r, err)) ||
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
         (rc = probe_programs(r, err)))
         goto fail;

@@ -91,11 +91,22 @@ int upload_single(GLuint tex, int w, int h, const uint8_t *data, const char *wha
 /* The Fresnel textures are an atlas (detile.h): the F x F Fresnel texels in rows [0, F), row F a
  * copy of row F - 1 (a bilinear lookup at the disc's edge, fresnel_uv_scale, reads no hash), the
  * lattice hash's cells (detile_cell_table) in rows [F + 1, F + 1 + DETILE_N), columns
- * [0, DETILE_N); POT. ocean.frag reads both through one unit: gles2-min's 8 are all in use. */
-static void atlas_size(const struct swell_table *fr, int *w, int *h)
+ * [0, DETILE_N); with a wave mask (mask.c) its MASK_TEX-square block from column mask_x, rows
+ * [0, MASK_TEX); POT. ocean.frag reads all of them through one unit: gles2-min's 8 are all in
+ * use, and a unit of the mask's own moved a wave pattern to the CPU there (+3.3 M instructions
+ * a frame in high quality, callgrind: the mask's view of README.md). */
+static void atlas_size(const struct swell_table *fr, int mask, int *w, int *h, int *mask_x)
 {
     int need = fr->height + 1 + DETILE_N;
     *w = fr->width > DETILE_N ? fr->width : DETILE_N;
+    *mask_x = 0;
+    if (mask) {
+        *mask_x = *w > fr->width ? *w : fr->width + 1;   /* after the guard column */
+        int wide = *mask_x + MASK_TEX;
+        for (*w = 1; *w < wide; *w *= 2)
+            ;
+        need = need > MASK_TEX ? need : MASK_TEX;
+    }
     for (*h = 1; *h < need; *h *= 2)
         ;
 }
@@ -111,6 +122,8 @@ static void atlas_finish(const struct renderer *r, uint8_t *out)
                out + row * (size_t)y + 4 * (size_t)(fr->width - 1), 4);
     memcpy(out + row * (size_t)fr->height, out + row * (size_t)(fr->height - 1), row);
     detile_cell_table(out + row * (size_t)(fr->height + 1), row);
+    if (r->d.wave_mask)
+        mask_block(&r->mask, out + 4 * (size_t)r->mask_x, row);
 }
 
 /* Where the atlas's hash is, for ocean.frag's detile_atlas and ocean.vert's detile_atlas_v:
@@ -182,7 +195,7 @@ int create_textures(struct renderer *r, struct swell_err *err)
         fr = &r->fresnel_own;
     }
     r->fresnel = fr;
-    atlas_size(fr, &r->atlas_w, &r->atlas_h);
+    atlas_size(fr, r->d.wave_mask, &r->atlas_w, &r->atlas_h, &r->mask_x);
     if ((rc = sky_bake(r->d.sun_elev_deg, r->d.sun_azim_deg, SKY_MAP_SIZE, &r->sky, err)))
         return rc;
     size_t scratch = sky_level_offset(&r->sky, r->sky.levels);
