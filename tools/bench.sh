@@ -215,13 +215,8 @@ echo "bench: $done_n scenes in $(printf %.0f "$(calc "$(now) - $t_matrix")") s, 
 # twentieth of the size: swell's functions execute the same on any driver and the run is many
 # times quicker under valgrind; the upload's driver share is softpipe's (reported apart).
 cg_costs() {   # cg_costs OUTFILE -> "function cost" lines, the largest entry per name
-    callgrind_annotate --inclusive=yes --auto=no --threshold=100 "$1" 2>/dev/null | awk '
-        /^ *[0-9,]+ \([ 0-9.]+%\) +[^ ]+:[A-Za-z_]/ {
-            c = $1; gsub(/,/, "", c); f = $0; sub(/^ *[0-9,]+ \([ 0-9.]+%\) +[^ ]*:/, "", f)
-            sub(/[ .].*/, "", f)
-            if (!(f in m) || c + 0 > m[f]) m[f] = c + 0
-        }
-        END { for (f in m) print f, m[f] }'
+    callgrind_annotate --inclusive=yes --auto=no --threshold=100 "$1" 2>/dev/null |
+        awk -f "$(dirname "$0")/cg-costs.awk"
 }
 cg_json() {   # cg_json TIER PATH DETILE N OUT_N OUT_2N -> JSON object on stdout
     awk -v own="$cg_own" -v upl="$cg_upload" -v tier="$1" -v path="$2" -v detile="$3" -v n="$4" '
