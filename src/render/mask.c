@@ -39,10 +39,7 @@ int renderer_set_mask(struct renderer *r, const struct wave_mask *m, struct swel
                           "wave_mask = 1");
     uint8_t *copy = NULL;
     struct wave_mask mc = { 0 };
-    if (m) {
-        if (m->w < 1 || m->h < 1 || m->w > WAVE_MASK_MAX || m->h > WAVE_MASK_MAX || !m->amp)
-            return swell_fail(err, SWELL_E_ARG, "renderer: the wave mask is %d x %d texels; "
-                              "each side must be 1..%d", m->w, m->h, WAVE_MASK_MAX);
+    if (m) {   /* (its fields checked by wave_mask_init, swell_ocean_set_mask) */
         size_t n = (size_t)m->w * (size_t)m->h;
         if (!(copy = malloc(n)))
             return swell_fail(err, SWELL_E_NOMEM, "renderer: no memory for the wave mask");

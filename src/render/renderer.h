@@ -90,8 +90,8 @@ struct renderer_desc {
                                          * as the reflection's, renderer_refraction_begin;
                                          * default 0 */
     int wave_mask;                      /* 1: the waves' amplitude by a coarse mask (mask.c,
-                                         * geometry/mask.h): a texture unit, the grid on the
-                                         * CPU, renderer_set_mask; default 0 */
+                                         * geometry/mask.h): a block of the Fresnel atlas, the
+                                         * grid on the CPU, renderer_set_mask; default 0 */
     int debug_variants;                 /* 1: each run of sea rows drawn in one flat colour
                                          * naming the ocean program it is drawn with, no sky
                                          * (white): the screen's share of each program
@@ -236,7 +236,8 @@ struct renderer_wake {
     float hull_length_m, beam_m;        /* 0: 9 m and a third of the length */
 };
 int  renderer_set_wake(struct renderer *r, const struct renderer_wake *w, struct swell_err *err);
-/* The wave mask (renderer_desc wave_mask): its bytes are copied; NULL: none (the open sea). */
+/* The wave mask (renderer_desc wave_mask), as wave_mask_init checked it: its bytes are copied;
+ * NULL: none (the open sea). */
 int  renderer_set_mask(struct renderer *r, const struct wave_mask *m, struct swell_err *err);
 /* Move the sun (degrees above the horizon in (0, 90], azimuth CCW from +x): re-bakes the sky
  * map (about 11 M instructions at 256^2) and the automatic exposure; not for every frame. */
