@@ -243,7 +243,8 @@ typedef struct swell_ocean_desc {
                                  * the weakest GPUs) */
     int geometry;               /* enum swell_geometry; default GRID (Bruneton's projected grid) */
     int tier;                   /* enum swell_tier: the highest tier to use; default the best the
-                                 * context offers */
+                                 * context offers (the fastest on GPUs where that is lower:
+                                 * VideoCore IV, gles2-min) */
     int detile;                 /* enum swell_detile; default AUTO (on in high quality) */
     float sun_elev_deg;         /* sun elevation above the horizon, (0, 90]; default 30 */
     float sun_azim_deg;         /* sun azimuth, CCW from east; default 0 */

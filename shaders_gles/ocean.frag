@@ -29,6 +29,8 @@
 
 uniform sampler2D fresnel_tex;      // Hu §5.1: A = Fresnel at the bumped view vector; an
                                     // atlas that also holds the lattice hash (renderer.c)
+uniform vec2 fresnel_uv_max;        // the Fresnel texels' far corner in the atlas (the guard
+                                    // row and column included; textures.c)
 uniform sampler2D sky_tex;           // with SWELL_RUN_LOD an atlas of its levels (sky_run)
 #ifdef SWELL_RUN_LOD
 uniform vec4 sky_run_lod;           // the run's blend of two sky levels: w = x V_FOOT + y; the
@@ -594,7 +596,7 @@ void main()
 #endif
     // Hu §5.1 Fresnel bump mapping and the reflected sky (Bruneton §5.2), at s0 + ds.
     vec4 uv = v_lin + v_lin_dx * g_ds.x + v_lin_dy * g_ds.y;
-    vec4 ftex = texture2D(fresnel_tex, uv.xy);
+    vec4 ftex = texture2D(fresnel_tex, min(uv.xy, fresnel_uv_max));
     vec2 d = v_sun.xy - g_ds;
 #ifdef QUALITY_HIGH
     // The sun stays a disc on a flat sea (Bruneton §5.1): variance clamped from below, at 1e-4,

@@ -33,6 +33,20 @@ const char *gpu_tier_name(int tier)
     return name_of(tier_names, TIER_COUNT, tier);
 }
 
+int gpu_default_tier(const char *renderer, int available, const char **why)
+{
+    /* VideoCore IV (vc4): its gles2-ext is vertex texture fetch and EXT_shader_texture_lod
+     * without derivatives or half floats, and there vc4 builds the detiled high-quality
+     * fragment shaders fetching 3-4 patterns on one thread: by docs/devices.md's cost model
+     * (make test-devices) the default view at 1280x720 takes 108 ms of fragment shading on
+     * gles2-ext against 37 ms on gles2-min (9.2 against 27 fps; low 25 against 23 ms). */
+    if (available == TIER_GLES2_EXT && strstr(renderer, "VC4")) {
+        *why = "VideoCore IV: tier gles2-min, faster here than gles2-ext (src/gl/gpu.c)";
+        return TIER_GLES2_MIN;
+    }
+    return available;
+}
+
 int gpu_tier_from_name(const char *name)
 {
     return parse_name(tier_names, 0, TIER_COUNT, name);
@@ -135,7 +149,9 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
                           "(%s, %s) only offers %s; pick --tier %s or lower",
                           gpu_tier_name(forced_tier), c->renderer, c->version,
                           gpu_tier_name(c->tier_available), gpu_tier_name(c->tier_available));
-    c->tier = forced_tier >= 0 ? forced_tier : c->tier_available;
+    c->tier_reason = NULL;
+    c->tier = forced_tier >= 0 ? forced_tier
+                               : gpu_default_tier(c->renderer, c->tier_available, &c->tier_reason);
     c->max_texture_size = max_size;
 
     switch (c->tier) {

@@ -19,6 +19,7 @@ enum gpu_tier { TIER_GLES2_MIN = 0, TIER_GLES2_EXT, TIER_GLES3, TIER_COUNT };
 struct gpu_caps {
     int tier;                   /* enum gpu_tier in force */
     int tier_available;         /* highest the context could do */
+    const char *tier_reason;    /* why tier is below tier_available unasked (gpu.c), or NULL */
     int texture_units;          /* fragment units usable (min(real, 8) on GLES2_MIN) */
     int vertex_texture_units;   /* 0 on GLES2_MIN */
     int half_float;             /* half-float textures usable (filtering too) */
@@ -55,6 +56,10 @@ struct gpu {
 
 const char *gpu_tier_name(int tier);       /* "gles2-min" */
 int gpu_tier_from_name(const char *name);  /* TIER_* or -1 */
+/* The tier drawn on when none is forced, for a context offering `available` whose
+ * GL_RENDERER is `renderer`: `available` but where a lower one is faster on that GPU (*why
+ * then says which and why; else untouched). */
+int gpu_default_tier(const char *renderer, int available, const char **why);
 /* Fragment shaders of this tier can give an explicit LOD: GLSL ES 3.00 (the gles3 tier) or
  * GL_EXT_shader_texture_lod in #version 100 shaders (shader.c's SWELL_HAS_TEXTURE_LOD). */
 int gpu_fragment_texture_lod(const struct gpu_caps *c);

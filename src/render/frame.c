@@ -267,6 +267,7 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     atlas_hash_frame(r, atlas);
     glUniform4fv(u[OU_DETILE_ATLAS], 1, atlas);
     glUniform2fv(u[OU_FRESNEL_V], 1, r->vf.fresnel_uv_scale);
+    glUniform2fv(u[OU_FRESNEL_MAX], 1, r->vf.fresnel_uv_scale);   /* ocean.frag: its bound */
     bind_tex(r, UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(r, UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
     glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));

@@ -29,7 +29,7 @@ static const char *const ocean_uniform_names[OU_COUNT] = {
     "refl_axes", "wake_tex", "wake_mat", "wake_rot", "wake_k", "wake_foam", "foam_gain", "foam_gain_v",
     "wake_warp", "shadow_tex", "shadow_mat", "shadow_sea", "shadow_foam",
     "refr_tex", "refr_screen", "refr_shift", "refr_tau", "mask_box", "mask_mat", "mask_foam",
-    "mask_foam_v"
+    "mask_foam_v", "fresnel_uv_max"
 };
 static const char *const sky_uniform_names[SU_COUNT] = {
     "clip_to_world_rel", "sky_view", "sky_view_scale", "sky_sun", "sun_ndc", "sun_display"

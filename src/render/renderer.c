@@ -419,6 +419,8 @@ int renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uin
     if (gpu_init(gpu, forced_tier, budget, err))
         return err ? err->code : SWELL_E_GL;
     d->gpu = gpu;
+    if (gpu->caps.tier_reason && note)
+        note(user, gpu->caps.tier_reason);
     int rc = renderer_create(d, out, err);
     if (rc == SWELL_E_SHADER && forced_tier < 0 && gpu->caps.tier != TIER_GLES2_MIN) {
         /* the tier chosen runs none of this quality's programs (VideoCore IV: vc4 cannot

@@ -49,6 +49,27 @@ static const char *find_line(const char *src, const char *line)
     return NULL;
 }
 
+/* The tier drawn on unasked: the best available, but VideoCore IV's gles2-ext (vc4: 2.7x the
+ * fragment time of its gles2-min by docs/devices.md's cost model) gives way to gles2-min, with
+ * a reason to print; other GPUs and vc4 on other tiers keep theirs. */
+static void test_default_tier(void **state)
+{
+    (void)state;
+    const char *why = NULL;
+    assert_int_equal(gpu_default_tier("VC4 V3D 2.1", TIER_GLES2_EXT, &why), TIER_GLES2_MIN);
+    assert_non_null(why);
+    assert_non_null(strstr(why, "VideoCore IV"));
+    why = NULL;
+    assert_int_equal(gpu_default_tier("VC4 V3D 2.1", TIER_GLES2_MIN, &why), TIER_GLES2_MIN);
+    assert_int_equal(gpu_default_tier("V3D 4.2", TIER_GLES3, &why), TIER_GLES3);
+    assert_int_equal(gpu_default_tier("Mali450", TIER_GLES2_EXT, &why), TIER_GLES2_EXT);
+    assert_int_equal(gpu_default_tier("Vivante GC2000 rev 5108", TIER_GLES2_EXT, &why),
+                     TIER_GLES2_EXT);
+    assert_int_equal(gpu_default_tier("llvmpipe (LLVM 15.0.6, 256 bits)", TIER_GLES3, &why),
+                     TIER_GLES3);
+    assert_null(why);
+}
+
 static void test_header_per_tier(void **state)
 {
     (void)state;
@@ -237,6 +258,7 @@ int main(void)
         return 1;
     }
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_default_tier),
         cmocka_unit_test(test_header_per_tier),
         cmocka_unit_test(test_includes_and_lines),
         cmocka_unit_test(test_include_errors),
