@@ -77,6 +77,14 @@ float fresnel_eff(float f, float sig)
     return fresnel_eff_terms(f, fresnel_eff_e(sig), fresnel_eff_k(sig));
 }
 
+// The sky map's texels hold the radiance's square root (sky.c: RGBA8 over each channel's
+// largest, so a dim horizon keeps its steps; half floats over 1): squared, times the
+// channel's scale (sky.h sky_texel_radiance).
+vec3 sky_decode(vec3 c, vec3 scale)
+{
+    return c * c * scale;
+}
+
 // Stereographic sky-map coordinates of a direction (Bruneton 2010 §5.2): zenith at the centre,
 // horizon on the circle of radius SKY_HORIZON of the half-width (sky.h SKY_MAP_HORIZON), the
 // ring outside it the radiance below the horizon (Bruneton §6's multiple reflections). A

@@ -47,7 +47,7 @@ uniform vec4 slope_mean[4];         // per slot: the mean slope over its patch (
                                     // (low quality: the dequantisation's bias less that mean)
 uniform vec4 slot_lod[4];           // per slot: its weight's terms (slot_weight)
 uniform vec2 lod_cmax[4];           // per slot: the largest contrast factor, slopes, whitecaps
-uniform float sky_map_scale;
+uniform vec3 sky_map_scale;         // per channel (sky_decode)
 uniform float sky_map_inv_size;     // 1 / texels
 uniform float sky_level_scale;      // sky map A (0..1) -> its level index (sky.h)
 uniform float sky_top_level;        // the sky map's last mip level
@@ -100,7 +100,7 @@ uniform vec3 shadow_sea;            // the sun's share of sea_radiance (x exposu
 uniform vec3 shadow_foam;           // ...and of the foam's radiance
 #endif
 #ifdef QUALITY_HIGH
-varying vec4 v_sun;                 // zeta_h - s0, Ross factor / (2 pi), x weight of var_v
+varying vec4 v_sun;                 // zeta_h - s0, ln(Ross factor / (2 pi)), x weight of var_v
 uniform vec2 slope_var[4];          // per slot: the slope variance over its patch less the
                                     // level's mean within-texel variance, T - W, xy
 uniform vec3 foam_radiance;         // Lambertian 0.4 foam lit by sun and sky (x exposure)
@@ -125,7 +125,7 @@ varying vec4 v_extra;               // the haze's Mie and Rayleigh phase weights
                                     // its green transmittance; the footprint (lod_foot)
 #define V_FOOT v_extra.w
 #else
-varying vec4 v_sun;                 // zeta_h - s0, the Ross factor over 2 pi sigma_x sigma_y,
+varying vec4 v_sun;                 // zeta_h - s0, ln of the Ross factor over 2 pi sigma_x sigma_y,
                                     // eq. 26's exponent (ocean.vert: the variance per vertex)
 varying vec4 v_fog;                 // the haze's in-scattered light and foam, the clear sea's
                                     // factor (ocean.vert)
@@ -614,12 +614,13 @@ void main()
 
     // Sun: Ross BRDF, eq. 15: the Gaussian slope density at the half vector's slope zeta_h,
     // centred on the pixel's mean slope, times the vertex's Fresnel / shadowing factor.
+    // (v_sun.z: the factor's logarithm, ocean.vert; no 0 x inf where it is past mediump's range)
 #ifdef SWELL_MASK
-    float p = exp(-0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) * inversesqrt(var.x) *
-              inversesqrt(var.y) * v_sun.z;
+    float p = exp(v_sun.z - 0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) * inversesqrt(var.x) *
+              inversesqrt(var.y);
 #else
-    float p = exp(-0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) * inversesqrt(var.x * var.y) *
-              v_sun.z;
+    float p = exp(v_sun.z - 0.5 * (d.x * d.x / var.x + d.y * d.y / var.y)) *
+              inversesqrt(var.x * var.y);
 #endif
 #else
     // The same with the variance per vertex (ocean.vert): eq. 26 of the vertex's sigma and
@@ -635,7 +636,7 @@ void main()
     ib *= g;
 #endif
     float f_eff = fresnel_eff_terms(ftex.a, v_sun.w, v_base.z);
-    float p = exp(-(d.x * d.x * ib.x + d.y * d.y * ib.y)) * v_sun.z;
+    float p = exp(v_sun.z - (d.x * d.x * ib.x + d.y * d.y * ib.y));
 #ifdef SWELL_WAKE
     p *= sqrt(g.x * g.y);
 #endif
@@ -653,7 +654,7 @@ void main()
 #else
     float sigma = inversesqrt(2.0 * min(ib.x, ib.y));
 #endif
-    vec3 sky = sky_eq27(uv.zw, sigma) * sky_map_scale;
+    vec3 sky = sky_decode(sky_eq27(uv.zw, sigma), sky_map_scale);
 #ifdef SWELL_REFLECT
     // an object's reflection covers the sky's, and the sun's where it stands in front of it;
     // eq. 27's slope deviations along the view (eq. 25's) and across it (low quality: the

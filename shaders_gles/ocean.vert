@@ -166,8 +166,8 @@ uniform float whitecap_epsilon_v;       // Dupuy eq. 3's threshold (ocean.frag's
 uniform vec2 foam_gain_v;               // eq. 6's gain by footprint over the run (ocean.frag
                                         // foam_gain's, own name likewise)
 #endif
-varying vec4 v_sun;         // zeta_h - s0, the Ross factor, eq. 25's x weight (low: the Ross
-                            // factor over 2 pi sigma_x sigma_y, eq. 26's exponent)
+varying vec4 v_sun;         // zeta_h - s0, ln of the Ross factor, eq. 25's x weight (low: ln
+                            // of the Ross factor over 2 pi sigma_x sigma_y, eq. 26's exponent)
 #ifdef QUALITY_HIGH
 varying vec4 v_base;        // slope variance xy, foam memory mean and variance not fetched
 varying vec4 v_extra;       // coverage (no whitecap fetched), sky LOD offset, the haze's
@@ -273,8 +273,13 @@ void main()
 #endif
     vec2 var_base = svar + amp2 * (const_slope.zw + unresolved_var);
     vec2 k_base = k_geo + const_k.xy;
+    // The sun's factor goes to the pixel as its logarithm, added to the Gaussian's exponent
+    // there (ocean.frag): at grazing views the Ross factor alone reaches 1e5-1e10 (cos_v and
+    // hn at their floors, 1 / hn^4), past mediump's 65504, and the pixel's 0 x inf drew the
+    // horizon rows white (calm, sun 4 degrees up, gles2-min low) where its Gaussian is 0.
+    float ln_sun = log(max(sun.z, 1e-30));
 #ifdef QUALITY_HIGH
-    v_sun = sun;
+    v_sun = vec4(sun.xy, ln_sun, sun.w);
     v_base = vec4(var_base, k_base);
 #if FS_WHITECAPS == 0
     // No whitecap table fetched in this run: Dupuy eq. 6's coverage depends on the vertex's
@@ -295,7 +300,7 @@ void main()
     // and eq. 26's terms of sigma (common.glsl fresnel_eff_terms).
     vec2 var = max(var_base + amp2 * fetched_var(geo.x), vec2(1e-4));
     float sig_v = sqrt(mix(var.y, var.x, sun.w));
-    v_sun = vec4(sun.xy, sun.z * inversesqrt(var.x * var.y), fresnel_eff_e(sig_v));
+    v_sun = vec4(sun.xy, ln_sun - 0.5 * log(var.x * var.y), fresnel_eff_e(sig_v));
     v_base = vec4(0.5 / var, fresnel_eff_k(sig_v), geo.x);
     // and no whitecap table: eq. 6's coverage from the vertex's moments, as high quality's
     // runs without whitecap fetches take it, mixed in with the haze: the pixel's radiance is

@@ -168,6 +168,14 @@ double sky_fresnel_avg(void)
     return sum / n;
 }
 
+void sky_texel_radiance(const struct sky *s, const uint8_t *p, float out[3])
+{
+    for (int c = 0; c < 3; c++) {
+        float v = p[c] / 255.0f;
+        out[c] = v * v * s->map_scale[c];
+    }
+}
+
 size_t sky_level_offset(const struct sky *s, int level)
 {
     size_t off = 0;
@@ -191,7 +199,7 @@ void sky_destroy(struct sky *s)
 int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct swell_err *err)
 {
     float e = elev_deg * (float)M_PI / 180.0f, a = azim_deg * (float)M_PI / 180.0f;
-    float *lin = NULL, maxv = 1e-6f;
+    float *lin = NULL, maxv[3] = { 1e-6f, 1e-6f, 1e-6f };
     int n = size, levels = 0;
     memset(out, 0, sizeof(*out));
     if (size < 4 || (size & (size - 1)))
@@ -251,8 +259,8 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
         if (lin[3 * k] < 0.0f)
             memcpy(lin + 3 * k, out->below, sizeof(out->below));
     for (size_t k = 0; k < 3 * (size_t)size * size; k++)
-        maxv = fmaxf(maxv, lin[k]);
-    out->map_scale = maxv;
+        maxv[k % 3] = fmaxf(maxv[k % 3], lin[k]);
+    memcpy(out->map_scale, maxv, sizeof(maxv));
     /* Level 0 quantised, then 2x2 box mips of the linear radiance (the filter eq. 27 needs). */
     for (int l = 0; l < levels; l++) {
         int m = size >> l;
@@ -262,9 +270,10 @@ int sky_bake(float elev_deg, float azim_deg, int size, struct sky *out, struct s
         for (int j = 0; j < m; j++)
             for (int i = 0; i < m; i++) {
                 for (int c = 0; c < 3; c++) {
-                    float rad = lin[3 * ((size_t)j * m + i) + c], v = rad / maxv;
-                    dst[4 * ((size_t)j * m + i) + c] = (uint8_t)(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f + 0.5f);
-                    hdst[4 * ((size_t)j * m + i) + c] = quantize_half_from_float(rad);
+                    float rad = lin[3 * ((size_t)j * m + i) + c];
+                    float v = sqrtf(fminf(fmaxf(rad / maxv[c], 0.0f), 1.0f));   /* (sky.h) */
+                    dst[4 * ((size_t)j * m + i) + c] = (uint8_t)(v * 255.0f + 0.5f);
+                    hdst[4 * ((size_t)j * m + i) + c] = quantize_half_from_float(sqrtf(fmaxf(rad, 0.0f)));
                 }
                 dst[4 * ((size_t)j * m + i) + 3] = (uint8_t)alpha;
                 hdst[4 * ((size_t)j * m + i) + 3] = quantize_half_from_float((float)alpha / 255.0f);

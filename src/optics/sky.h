@@ -45,12 +45,19 @@ struct sky {
     float sky_irr[3];       /* sky irradiance on a horizontal surface, relative to E0 */
     float below[3];         /* radiance below the horizon, F_avg sky_irr / pi (multiple
                              * reflections, above) */
-    float map_scale;        /* texel value v / 255 * map_scale = radiance, per channel */
+    float map_scale[3];     /* per channel, the largest radiance of level 0: a texel value v
+                             * of data is radiance (v / 255)^2 map_scale[c] (sky_texel_radiance;
+                             * ocean.frag sky_decode) */
     int size, levels;       /* sky map: size x size, full mip chain */
-    uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed; A holds
+    uint8_t *data;          /* RGBA8, level-major, rows bottom-up, tightly packed: RGB the
+                             * square root of the radiance over map_scale, so the dim horizon
+                             * opposite a low sun keeps 60-100 steps a channel (linear over
+                             * the map's largest value it had 2-3 in blue: bands of colour in
+                             * the sea's reflection on gles2-min); A holds
                              * the level l as SKY_LEVEL_ALPHA * l: a fetch's A / 255 x
                              * (255 / SKY_LEVEL_ALPHA) is the LOD it sampled (ocean.frag) */
-    uint16_t *half;         /* the same levels as IEEE half radiances (no scale): RGBA16F;
+    uint16_t *half;         /* the same levels as IEEE halves of the radiance's square root
+                             * (no scale: map_scale 1), RGBA16F;
                              * A as data's, A = SKY_LEVEL_ALPHA l / 255 */
 };
 
@@ -95,6 +102,9 @@ void sky_transmittance(float m, float out[3]);
 /* common.glsl sky_map_uv: the map coordinates of unit direction r; below SKY_MAP_BELOW_Z its z
  * is raised to it (the ring's middle). */
 void sky_map_uv(const float r[3], float uv[2]);
+
+/* The radiance of RGBA8 texel p of s->data (its encoding, above). */
+void sky_texel_radiance(const struct sky *s, const uint8_t *p, float out[3]);
 
 /* Sky radiance towards unit direction dir (z up); below the horizon s->below (set by sky_bake;
  * multiple reflections, above). */

@@ -270,7 +270,11 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     glUniform2fv(u[OU_FRESNEL_MAX], 1, r->vf.fresnel_uv_scale);   /* ocean.frag: its bound */
     bind_tex(r, UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(r, UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
-    glUniform1f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : r->sky.map_scale));
+    {
+        const float *ms = r->sky.map_scale;   /* (sky.h: the half-float map's scale is 1) */
+        glUniform3f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : ms[0]),
+                    e * (r->sky_half ? 1.0f : ms[1]), e * (r->sky_half ? 1.0f : ms[2]));
+    }
     glUniform1f(u[OU_SKY_SIZE], r->vf.sky_map_size);
     glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
     glUniform1f(u[OU_SKY_LEVEL_SCALE], 255.0f / (float)SKY_LEVEL_ALPHA);

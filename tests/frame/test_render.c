@@ -570,6 +570,18 @@ static void test_glint(void **state)
     assert_true(peak > 200.0);
 }
 
+/* The default camera at (x, y, z), heading and pitch in degrees. */
+static void place_camera(struct camera *c, double x, double y, double z, float heading,
+                         float pitch)
+{
+    camera_defaults(c);
+    c->pos[0] = x;
+    c->pos[1] = y;
+    c->pos[2] = z;
+    c->heading_deg = heading;
+    c->pitch_deg = pitch;
+}
+
 /* No hard-edged specks: a pixel's Fresnel lookup is linearised about its vertex (ocean.vert),
  * and on steep near waves seen at grazing angles (4 m up, low sun to the side, 10 m/s) the
  * pixel's slope deviation carried it out of the Fresnel texels into the rest of the atlas:
@@ -586,12 +598,7 @@ static void test_no_specks(void **state)
     double hz[W];
     (void)state;
     use_baked(SWELL_BUDGET_DEFAULT, 10.0f);
-    camera_defaults(&c);
-    c.pos[0] = -400.0;
-    c.pos[1] = 250.0;
-    c.pos[2] = 4.0;
-    c.heading_deg = -60.0f;
-    c.pitch_deg = -6.0f;
+    place_camera(&c, -400.0, 250.0, 4.0, -60.0f, -6.0f);
     horizon_rows(&c, hz);
     for (int ti = 0; ti < 2; ti++)
         for (int q = 0; q < QUALITY_COUNT; q++) {
@@ -621,6 +628,45 @@ static void test_no_specks(void **state)
             assert_true(n > W * H);
             assert_true(dark <= n / 500);
         }
+}
+
+/* The horizon rows on gles2-min under a low sun (4 degrees, behind and to the side; 5 m/s,
+ * 12 m up), both qualities:
+ * - no white sea: at grazing views the Ross factor reached 1e5-1e10, past mediump's range, and
+ *   low quality's 0 x inf drew the rows below the horizon white (1987 pixels here); it now
+ *   reaches the pixel as a logarithm (ocean.vert);
+ * - no bands of colour: the RGBA8 sky map held the horizon opposite the sun in 2-3 steps of
+ *   blue (linear over the map's brightest texel), so the reflected sky changed tint in
+ *   wedges; it now holds each channel's square root over that channel's largest (sky.h). The
+ *   largest step of red less blue between neighbouring columns over the 14 rows below the
+ *   horizon was 10-15 (high) and 24-30 (low), now 4-6 (gles2-ext, half floats: 1). */
+static void test_low_sun_horizon(void **state)
+{
+    struct camera c;
+    double hz[W];
+    (void)state;
+    use_baked(SWELL_BUDGET_DEFAULT, 5.0f);
+    place_camera(&c, 1606.0, -1878.0, 12.0, 94.0f, -14.1f);
+    horizon_rows(&c, hz);
+    for (int q = 0; q < QUALITY_COUNT; q++) {
+        int white = 0, top = 0;
+        double step = 0.0;
+        render(TIER_GLES2_MIN, q, GEOMETRY_GRID, 4.0f, -20.0f, &c, 0.4, fx.img, NULL);
+        dump(fx.img, q == QUALITY_HIGH ? "low_sun_horizon_high" : "low_sun_horizon_low");
+        for (int x = 0; x < W; x++)
+            top = (int)fmax(top, ceil(hz[x]));
+        for (int y = top + 1; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                const uint8_t *p = fx.img + 4 * (y * W + x);
+                white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+                if (x + 1 < W && y <= top + 14)
+                    step = fmax(step, abs((p[4] - p[6]) - (p[0] - p[2])));
+            }
+        print_message("%s: %d white sea pixels; largest step of red less blue between "
+                      "columns below the horizon %.0f\n", render_quality_name(q), white, step);
+        assert_int_equal(white, 0);
+        assert_true(step <= 8.0);
+    }
 }
 
 /* The loop: t and t + T give the same frame. */
@@ -2030,6 +2076,7 @@ int main(void)
         cmocka_unit_test_teardown(test_orbit, reset_fixture),
         cmocka_unit_test_teardown(test_glint, reset_fixture),
         cmocka_unit_test_teardown(test_no_specks, reset_fixture),
+        cmocka_unit_test_teardown(test_low_sun_horizon, reset_fixture),
         cmocka_unit_test_teardown(test_loop, reset_fixture),
         cmocka_unit_test_teardown(test_tiers, reset_fixture),
         cmocka_unit_test_teardown(test_tiers_low, reset_fixture),

@@ -354,22 +354,32 @@ static void test_sky_irradiance(void **state)
     {
         float up[3] = { 0.0f, 0.0f, 1.0f }, l[3];
         const uint8_t *t = s.data + 4 * ((size_t)(s.size / 2) * s.size + s.size / 2);
+        float tv[3];
         sky_radiance(&s, up, l);
+        sky_texel_radiance(&s, t, tv);
         for (int c = 0; c < 3; c++)
-            assert_true(fabs(t[c] / 255.0 * s.map_scale - l[c]) < 0.02 * s.map_scale);
+            assert_true(fabs(tv[c] - l[c]) < 0.02 * s.map_scale[c]);
     }
-    /* the half-float chain holds the same radiances unscaled: every texel of every level within
-     * half of the RGBA8 step (its rounding) plus half precision (2^-11 relative); A, the level
-     * index of ocean.frag's own-LOD probe, as the RGBA8 chain's */
+    /* the half-float chain holds the same radiances' square roots unscaled (sky.h): every
+     * texel of every level within half of the RGBA8 step (its rounding, in the square root)
+     * plus half precision (2^-11 relative); A, the level index of ocean.frag's own-LOD probe,
+     * as the RGBA8 chain's */
     for (int l = 0; l < s.levels; l++) {
         int m = s.size >> l;
         const uint8_t *q = s.data + sky_level_offset(&s, l);
         const uint16_t *h = s.half + sky_level_offset(&s, l);
         for (int i = 0; i < m * m; i++)
             for (int c = 0; c < 4; c++) {
-                float v = quantize_float_from_half(h[4 * i + c]);
-                float ref = c == 3 ? q[4 * i + 3] / 255.0f : q[4 * i + c] / 255.0f * s.map_scale;
-                assert_true(fabsf(v - ref) <= 0.5f / 255.0f * s.map_scale + fabsf(ref) / 2048.0f);
+                float v = quantize_float_from_half(h[4 * i + c]), ref, tol;
+                if (c == 3) {
+                    ref = q[4 * i + 3] / 255.0f;
+                    tol = ref / 2048.0f;
+                } else {   /* both as square roots of the radiance */
+                    float rs = sqrtf(s.map_scale[c]);
+                    ref = q[4 * i + c] / 255.0f * rs;
+                    tol = 0.5f / 255.0f * rs + ref / 2048.0f;
+                }
+                assert_true(fabsf(v - ref) <= tol + 1e-7f);
             }
     }
     sky_destroy(&s);
