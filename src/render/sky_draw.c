@@ -11,13 +11,18 @@
 
 /* With run_lod the sky map's levels sit in one texture without mips, twice as wide as high
  * (SWELL_RUN_LOD in ocean.frag reads two neighbouring levels of it per pixel and blends them,
- * set_run_lods): level 0 at the left, level l >= 1 at x = size, y = size - size / 2^(l-1).
+ * set_run_lods): level 0 at the right, level l >= 1 of side n at x = 0, y = n - 1, so the
+ * coarse levels lie near the origin. A coarse texel spans many pixels at the horizon, and
+ * gles2-min's mediump coordinates are finest near 0: with the coarse levels at u >= 1/2 and v
+ * near 1 a fetch moved in quarter texels there, and the sea below the horizon drew wedges of
+ * constant colour (calm, 3 m up, gles2-min on llvmpipe; test_seams test_sky_levels_continuous).
  * Returns the level's side, texels. */
 int sky_atlas_at(int size, int l, int *x, int *y)
 {
-    *x = l == 0 ? 0 : size;
-    *y = l == 0 ? 0 : size - (size >> (l - 1));
-    return size >> l > 0 ? size >> l : 1;
+    int n = size >> l > 0 ? size >> l : 1;
+    *x = l == 0 ? size : 0;
+    *y = l == 0 ? 0 : n - 1;
+    return n;
 }
 
 /* The HDR sky map of high quality: half-float radiances where the tier has half-float
