@@ -15,7 +15,7 @@
  * coarse levels lie near the origin. A coarse texel spans many pixels at the horizon, and
  * gles2-min's mediump coordinates are finest near 0: with the coarse levels at u >= 1/2 and v
  * near 1 a fetch moved in quarter texels there, and the sea below the horizon drew wedges of
- * constant colour (calm, 3 m up, gles2-min on llvmpipe; test_seams test_sky_levels_continuous).
+ * constant colour (calm, 3 m up, gles2-min on llvmpipe; test_render test_low_sun_horizon).
  * Returns the level's side, texels. */
 int sky_atlas_at(int size, int l, int *x, int *y)
 {
