@@ -267,14 +267,15 @@ static void set_ocean_uniforms(struct renderer *r, int k, int kw, const struct c
     atlas_hash_frame(r, atlas);
     glUniform4fv(u[OU_DETILE_ATLAS], 1, atlas);
     glUniform2fv(u[OU_FRESNEL_V], 1, r->vf.fresnel_uv_scale);
-    glUniform2fv(u[OU_FRESNEL_MAX], 1, r->vf.fresnel_uv_scale);   /* ocean.frag: its bound */
+    /* the same corner as ocean.frag's clamp: a uniform of its own, since one name in both
+     * stages would need one precision */
+    glUniform2fv(u[OU_FRESNEL_MAX], 1, r->vf.fresnel_uv_scale);
     bind_tex(r, UNIT_FRESNEL, r->fresnel_tex, u[OU_FRESNEL_TEX]);
     bind_tex(r, UNIT_SKY, chain_at(&r->sky_tex, 0), u[OU_SKY_TEX]);
-    {
-        const float *ms = r->sky.map_scale;   /* (sky.h: the half-float map's scale is 1) */
-        glUniform3f(u[OU_SKY_SCALE], e * (r->sky_half ? 1.0f : ms[0]),
-                    e * (r->sky_half ? 1.0f : ms[1]), e * (r->sky_half ? 1.0f : ms[2]));
-    }
+    float sky_scale[3];   /* per channel; the half-float map's is 1 (sky.h) */
+    for (int c = 0; c < 3; c++)
+        sky_scale[c] = e * (r->sky_half ? 1.0f : r->sky.map_scale[c]);
+    glUniform3fv(u[OU_SKY_SCALE], 1, sky_scale);
     glUniform1f(u[OU_SKY_SIZE], r->vf.sky_map_size);
     glUniform1f(u[OU_SKY_INV_SIZE], 1.0f / (float)r->sky.size);
     glUniform1f(u[OU_SKY_LEVEL_SCALE], 255.0f / (float)SKY_LEVEL_ALPHA);

@@ -423,10 +423,11 @@ int renderer_open(struct renderer_desc *d, struct gpu *gpu, int forced_tier, uin
         note(user, gpu->caps.tier_reason);
     int rc = renderer_create(d, out, err);
     if (rc == SWELL_E_SHADER && forced_tier < 0 && gpu->caps.tier != TIER_GLES2_MIN) {
-        /* the tier chosen runs none of this quality's programs (VideoCore IV: vc4 cannot
-         * allocate registers for any high-quality vertex shader that fetches the
-         * displacement): the same quality on gles2-min, whose vertex shaders are smaller (the
-         * CPU displaces the grid), before the other quality */
+        /* the tier chosen runs none of this quality's programs (as VideoCore IV's gles2-ext
+         * did, before gpu_default_tier kept vc4 on gles2-min: vc4 could not allocate registers
+         * for the high-quality vertex shaders that fetch the displacement): the same quality
+         * on gles2-min, whose vertex shaders are smaller (the CPU displaces the grid), before
+         * the other quality */
         snprintf(msg, sizeof msg, "%s\n%s quality does not run on tier %s here; trying tier "
                  "gles2-min", err ? err->msg : "", render_quality_name(d->quality),
                  gpu_tier_name(gpu->caps.tier));
