@@ -153,6 +153,7 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
     c->tier = forced_tier >= 0 ? forced_tier
                                : gpu_default_tier(c->renderer, c->tier_available, &c->tier_reason);
     c->max_texture_size = max_size;
+    c->fbo_render_mipmap = es3 || parse_has_token(exts, "GL_OES_fbo_render_mipmap");
 
     switch (c->tier) {
     case TIER_GLES2_MIN:

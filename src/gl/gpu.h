@@ -34,6 +34,9 @@ struct gpu_caps {
                                  * rasteriser (gpu.c) */
     int glsl100_derivatives;    /* #version 100 shaders may enable GL_OES_standard_derivatives */
     int glsl100_texture_lod;    /* #version 100 shaders may enable GL_EXT_shader_texture_lod */
+    int fbo_render_mipmap;      /* a framebuffer may draw into any mip level of a texture
+                                 * (GLES 3, or GLES 2's OES_fbo_render_mipmap; every Mesa
+                                 * driver has it): on any tier, not a shader feature */
     float max_lod_bias;         /* largest texture-lookup bias the device applies (gpu.c) */
     char vendor[64], renderer[128], version[128];
 };

@@ -167,6 +167,9 @@ struct fs_slot {
                                        * little to fetch (DROP_RESOLVED) */
     struct stream_phase phase;        /* of the pattern's own loop period (bake.c) */
     int phase_valid;
+    GLuint frame_tex[2][2];           /* stream_gpu.c: [slope, whitecap][pair] a loop frame's
+                                       * chain as baked, the blend's sources */
+    int frame_of[2][2];               /* the table frame each holds, -1 none */
     float level_within[SLOT_LEVELS];  /* ...level_var's x + y (weight_terms)... */
     float level_wfrac[SLOT_LEVELS];   /* ...and its share of the top level's (ocean.vert
                                        * fetched_var; 1 from the top level on) */
@@ -227,6 +230,11 @@ struct renderer {
     float exposure;
     float water_albedo[3];            /* eq. 28's water body, L_sea = albedo E / pi (water.h) */
     uint64_t stream_bytes;
+    int gpu_blend;                    /* 1: the loop blend drawn on the GPU (stream_gpu.c) */
+    const char *gpu_blend_why;        /* why not, where it is not */
+    struct shader_program blendp;     /* stream_blend.frag */
+    GLint blend_u[3];
+    GLuint blend_fbo;
     uint64_t gpu_bytes;               /* accounted by gpu.h for this renderer's objects */
     int run_lod;                      /* pattern fetches at one LOD per run (gpu.c) */
     int draws;                        /* sea draws in the last frame */
@@ -338,6 +346,11 @@ void bind_tex(const struct renderer *r, int unit, GLuint tex, GLint loc);
 GLuint chain_at(const struct chain_tex *c, int l);
 void stream_disp(struct renderer *r, double t_s);
 void stream_textures(struct renderer *r, double t_s);
+/* stream_gpu.c: the loop blend on the GPU where the device can (render/stream_gpu.c), else the
+ * CPU's (tables/stream.h); never an error: gpu_blend and gpu_blend_why say which and why */
+void stream_gpu_create(struct renderer *r);
+void stream_gpu_destroy(struct renderer *r);
+void stream_gpu_slot(struct renderer *r, struct fs_slot *sl, const struct stream_phase *ph);
 void chain_destroy(struct renderer *r, struct chain_tex *c);
 int create_textures(struct renderer *r, struct swell_err *err);
 int upload_chain_typed(const struct chain_tex *c, int w, int h, int levels,

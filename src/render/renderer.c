@@ -57,6 +57,7 @@ void renderer_destroy(struct renderer *r)
 {
     if (!r)
         return;
+    stream_gpu_destroy(r);
     for (int s = SWELL_MAX_PATTERNS - 1; s >= 0; s--) {
         gpu_texture_destroy(r->gpu, &r->disp_tex[s][1]);
         gpu_texture_destroy(r->gpu, &r->disp_tex[s][0]);
@@ -186,6 +187,7 @@ static int create_once(const struct renderer_desc *desc, struct renderer **out,
         (rc = build_programs(r, err)) || (rc = create_buffers(r, err)) ||
         (rc = probe_programs(r, err)))
         goto fail;
+    stream_gpu_create(r);   /* after the probes, which blend on the CPU */
     r->gpu_bytes = r->gpu->bytes - before;
     *out = r;
     return 0;
@@ -313,7 +315,7 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
 {
     memset(out, 0, sizeof(*out));
     out->gpu_bytes = r->gpu_bytes;
-    out->cpu_bytes_per_frame = r->stream_bytes + (r->vtf ? 0 :
+    out->cpu_bytes_per_frame = (r->gpu_blend ? 0 : r->stream_bytes) + (r->vtf ? 0 :
         sizeof(float) * (r->cpu_vterms ? VSHADE_FLOATS : GRID_FLOATS) *
         (uint64_t)grid_vertex_count(r->grid));
     out->cpu_vertex_terms = r->cpu_vterms;
@@ -336,7 +338,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
         "geometry: %s, %s, %d vertices\n"
         "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x), whitecaps "
         "per vertex of mask 0x%x\n"
-        "loop frames: blended on the CPU, %llu bytes of textures streamed per loop step\n"
+        "loop frames: %s%s%s%s, %llu bytes of textures in a step's blend\n"
         "fetches: per run of rows only the patterns whose mip means still vary there; "
         "whitecaps of %d pattern(s); %s\n"
         "tiles: %s\n"
@@ -353,6 +355,10 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                : "CPU-displaced (no vertex texture fetch), streamed per frame",
         grid_vertex_count(r->grid), r->nfs,
         r->t->patterns - r->nfs, r->cpu_mask, r->cpu_mask | r->k_mask,
+        r->gpu_blend ? "blended on the GPU from each table's two frames (stream_gpu.c; a "
+                       "frame's chain uploaded when the phase reaches it)"
+                     : "blended on the CPU and uploaded",
+        r->gpu_blend ? "" : " (", r->gpu_blend ? "" : r->gpu_blend_why, r->gpu_blend ? "" : ")",
         (unsigned long long)r->stream_bytes, r->nwc,
         r->run_lod ? "one level per run, by binding that level's own texture (software "
                      "rasteriser: per-pixel LOD is its slow path)"

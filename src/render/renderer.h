@@ -55,6 +55,10 @@ struct renderer_desc {
     int probe_refuse_objects;           /* tests: 1: every program with the objects' passes
                                          * (reflections, wakes, shadows, refractions) taken as
                                          * refused (GC2000's since the reflections' ellipse) */
+    int cpu_loop_blend;                 /* 1: blend the streamed tables' loop frames on the
+                                         * CPU (tables/stream.h) even where the GPU can draw
+                                         * the blend (stream_gpu.c; tests compare the two; the
+                                         * environment's SWELL_LOOP_BLEND=cpu does the same) */
     int cpu_vertex_terms;               /* 1: on gles2-min the terms of each vertex on the CPU
                                          * (vshade.h) from the start; default 0: only where the
                                          * driver refuses ocean.vert's (renderer_create) */

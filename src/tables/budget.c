@@ -38,7 +38,9 @@ uint64_t budget_sizing_bytes(const struct seastate *s)
            budget_resident_bytes(s->patterns, s->size_fs);
 }
 
-uint64_t budget_gpu_bytes(const struct seastate *s)
+/* The GPU bytes of a set: with blend_sources, the two loop frames per streamed table the GPU
+ * blends from too (render/stream_gpu.c). */
+static uint64_t gpu_bytes(const struct seastate *s, int blend_sources)
 {
     struct swell_table shape[SWELL_MAX_TABLES];
     int n = tables_layout(s, shape);
@@ -47,11 +49,21 @@ uint64_t budget_gpu_bytes(const struct seastate *s)
         int layers = shape[i].layers > 0 ? shape[i].layers : 1;
         uint64_t frame = table_bytes(&shape[i]) / (uint64_t)layers;
         if (shape[i].kind == TABLE_SLOPE || shape[i].kind == TABLE_WHITECAP)
-            b += frame;         /* one loop-blended frame, streamed */
+            b += (blend_sources ? 3u : 1u) * frame;   /* one loop-blended frame, streamed */
         else if (shape[i].kind == TABLE_DISP)
             b += 2u * frame;    /* vertex texture fetch: the two frames blended */
     }
     return b;
+}
+
+uint64_t budget_gpu_bytes(const struct seastate *s)
+{
+    return gpu_bytes(s, 1);
+}
+
+uint64_t budget_gpu_need_bytes(const struct seastate *s)
+{
+    return gpu_bytes(s, 0);
 }
 
 int budget_check(const struct seastate *s, uint64_t budget, const char *what,
@@ -67,7 +79,7 @@ int budget_check(const struct seastate *s, uint64_t budget, const char *what,
                           "for: the manifest was not written by swell-bake; re-bake the set",
                           what, s->patterns, s->size_fs, s->size_fs, s->frames,
                           (unsigned long long)tables, (unsigned long long)s->budget_bytes);
-    uint64_t need = budget_gpu_bytes(s);
+    uint64_t need = budget_gpu_need_bytes(s);
     if (need <= budget)
         return SWELL_OK;
     return swell_fail(err, SWELL_E_BUDGET,

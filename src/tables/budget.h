@@ -34,10 +34,15 @@ uint64_t budget_table_bytes(int patterns, int n_fs, int n_geo, int frames);
 uint64_t budget_sizing_bytes(const struct seastate *s);
 
 /* The most GPU memory a renderer takes for a set of this resolved state (its tables_layout:
- * one frame of each slope and whitecap table, two of each displacement table, and the fixed
- * part): every tier, geometry kind and quality at the default grids, no passes. */
+ * three frames of each slope and whitecap table, the one blended and the two the GPU blends
+ * it from (render/stream_gpu.c), two of each displacement table, and the fixed part): every
+ * tier, geometry kind and quality at the default grids, no passes. The bake sizes the tables
+ * so that it fits the budget. */
 uint64_t budget_gpu_bytes(const struct seastate *s);
-/* SWELL_E_BUDGET unless budget_gpu_bytes(s) fits budget (0: s->budget_bytes) and the tables
+/* The least it needs: one frame of each slope and whitecap table (the CPU blends, which the
+ * renderer falls back to where the budget has no room for the GPU's sources). */
+uint64_t budget_gpu_need_bytes(const struct seastate *s);
+/* SWELL_E_BUDGET unless budget_gpu_need_bytes(s) fits budget (0: s->budget_bytes) and the tables
  * with the sizing rule's part fit s->budget_bytes (as the bake sized them); the message names
  * what, the bytes and what to do. Checked before anything is read or allocated. */
 int budget_check(const struct seastate *s, uint64_t budget, const char *what,

@@ -95,12 +95,23 @@ static void stream_blend_bytes(uint8_t *restrict d, const uint8_t *restrict a,
         d[i] = (uint8_t)((uint16_t)(a[i] * w0 + b[i] * w1 + STREAM_W_ONE / 2) >> 8);
 }
 
-void stream_blend(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst)
+static void blend_level(const struct swell_table *t, const struct stream_phase *ph, int level,
+                        uint8_t *dst)
 {
     int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0;
+    stream_blend_bytes(dst + stream_level_offset(t, level), t->data + table_offset(t, level, f0),
+                       t->data + table_offset(t, level, f1), table_level_bytes(t, level), ph->w);
+}
+
+void stream_blend(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst)
+{
     for (int l = 0; l < t->levels; l++)
-        stream_blend_bytes(dst + stream_level_offset(t, l), t->data + table_offset(t, l, f0),
-                           t->data + table_offset(t, l, f1), table_level_bytes(t, l), ph->w);
+        blend_level(t, ph, l, dst);
+}
+
+void stream_blend_top(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst)
+{
+    blend_level(t, ph, t->levels - 1, dst);
 }
 
 uint16_t stream_wc_mix_factor(int w)
@@ -143,24 +154,37 @@ void stream_blend_whitecap(const struct swell_table *t, const struct stream_phas
     stream_wc_blend_var(t, ph, dst);
 }
 
-void stream_wc_blend_var(const struct swell_table *t, const struct stream_phase *ph,
-                         uint8_t *dst)
+/* stream_wc_blend_var for one level (nothing from level 2 up) */
+static void wc_blend_var_level(const struct swell_table *t, const struct stream_phase *ph,
+                               int l, uint8_t *dst)
 {
     int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0;
     uint16_t k = stream_wc_mix_factor(ph->w);
-    for (int l = 0; l < 2 && l < t->levels; l++) {
-        uint8_t *d = dst + stream_level_offset(t, l);
-        const uint8_t *a = t->data + table_offset(t, l, f0), *b = t->data + table_offset(t, l, f1);
-        size_t n = table_level_bytes(t, l), i = 0;
-        if (k == 0 || a == b)
-            continue;   /* a frame alone: the blend of zeros, 0 */
+    uint8_t *d = dst + stream_level_offset(t, l);
+    const uint8_t *a = t->data + table_offset(t, l, f0), *b = t->data + table_offset(t, l, f1);
+    size_t n = table_level_bytes(t, l), i = 0;
+    if (l >= 2 || k == 0 || a == b)
+        return;   /* a frame alone: the blend of zeros, 0 */
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-        for (; i + 16 <= n; i += 16)
-            wc_mix4(d + i, a + i, b + i, k);
+    for (; i + 16 <= n; i += 16)
+        wc_mix4(d + i, a + i, b + i, k);
 #endif
-        for (; i + 4 <= n; i += 4) {
-            int e = a[i] - b[i];
-            d[i + 2] = (uint8_t)(((((unsigned)(e * e) + 128u) >> 8) * k + 128u) >> 8);
-        }
+    for (; i + 4 <= n; i += 4) {
+        int e = a[i] - b[i];
+        d[i + 2] = (uint8_t)(((((unsigned)(e * e) + 128u) >> 8) * k + 128u) >> 8);
     }
+}
+
+void stream_wc_blend_var(const struct swell_table *t, const struct stream_phase *ph,
+                         uint8_t *dst)
+{
+    for (int l = 0; l < 2 && l < t->levels; l++)
+        wc_blend_var_level(t, ph, l, dst);
+}
+
+void stream_blend_whitecap_top(const struct swell_table *t, const struct stream_phase *ph,
+                               uint8_t *dst)
+{
+    blend_level(t, ph, t->levels - 1, dst);
+    wc_blend_var_level(t, ph, t->levels - 1, dst);
 }
