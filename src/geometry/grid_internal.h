@@ -29,7 +29,7 @@ static inline float sphere_drop(float r2)
 #define NEAR_N 129            /* near patch vertices per side (128 cells) */
 #define FAR_RINGS 32          /* far patch rings from the near patch border to the far plane */
 #define NEAR_RINGS ((NEAR_N - 1) / 2)  /* square rings of cells the near patch is drawn in */
-#define TILE_LOG2 4           /* lazily blended tiles of 16 x 16 texels */
+#define TILE_LOG2 3           /* lazily blended tiles of 8 x 8 texels */
 #define COORD_BIAS 1073741824.0  /* 2^30: a multiple of every table size; makes texel coords > 0 */
 #define VBLK 8                /* vertices per fixed-size block of the vectorised per-vertex passes */
 

@@ -508,6 +508,7 @@ static void k_moment_quads(const struct grid *g, const struct pattern_frame *f, 
         lv[l].hm = p->wc_f[l].h - 1;
         lv[l].stride = 4 * (size_t)(p->wc_f[l].w + 1);
     }
+    const float kw0 = p->k_w0;   /* a local: vx's stores would make it reloaded per vertex */
     for (int e = 0; e < g->nverts; e += 4) {   /* the arrays are padded to VBLK (grid.h) */
         f4 r = ld4(g->foot + e) * lk;
         i32x4 rb, lev, sb;
@@ -560,7 +561,7 @@ static void k_moment_quads(const struct grid *g, const struct pattern_frame *f, 
             float v = maxf(q[1] - q[0] * q[0], 0.0f);
             vx[GRID_A_K] += q[0];
             /* magnified_var */
-            vx[GRID_A_K + 1] += p->k_w0 + q[2] + (v - p->k_w0 - q[2]) * ms[k];
+            vx[GRID_A_K + 1] += kw0 + q[2] + (v - kw0 - q[2]) * ms[k];
         }
     }
 }
