@@ -8,8 +8,9 @@
  * of the 2 M budget. Here each table keeps the two frames' chains as baked, as textures, and
  * a draw per mip level blends them into the texture the ocean reads (shaders_gles/
  * stream_blend.frag): a frame's chain is uploaded once when the phase reaches it (every
- * T_i / F seconds, T_i the pattern's period), the CPU blends only the top texel, whose
- * moments the renderer's per-frame constants need (textures.c slot_constants). What it costs
+ * T_i / F seconds, T_i the pattern's period); the CPU blends and uploads only the levels under
+ * GPU_BLEND_MIN texels, with the top texel whose moments the renderer's per-frame constants
+ * need (textures.c slot_constants). What it costs
  * the GPU: two nearest fetches and five operations per texel of the chains, 4/3 of 128 x 128 per
  * table (1/9 of a 640x360 frame's pixels for the eight tables of high quality), and the two
  * sources' memory per table.
@@ -24,6 +25,21 @@
 #include "render/internal.h"
 
 enum { BLEND_SLOPE, BLEND_WC };
+
+/* Levels narrower and lower than this many texels are blended on the CPU and uploaded (a few
+ * hundred bytes a table): a draw and a framebuffer change each cost a software rasteriser
+ * more than their texels (llvmpipe, rough surface at 1280x720: every level drawn took the
+ * frame 4-5 % longer than the CPU's blend) and a tiler a pass over its tile memory. */
+#define GPU_BLEND_MIN 16
+
+/* The first level of t the CPU blends (stream_blend_coarse): its levels from there up. */
+static int first_cpu_level(const struct swell_table *t)
+{
+    int l = 0;
+    while (l < t->levels - 1 && ((t->width >> l) >= GPU_BLEND_MIN || (t->height >> l) >= GPU_BLEND_MIN))
+        l++;
+    return l;
+}
 
 static const struct swell_table *blend_table(const struct fs_slot *sl, int k)
 {
@@ -227,7 +243,8 @@ void stream_gpu_slot(struct renderer *r, struct fs_slot *sl, const struct stream
         glBindTexture(GL_TEXTURE_2D, sl->frame_tex[k][a]);
         glActiveTexture(GL_TEXTURE0 + (GLenum)(u0 + 1));
         glBindTexture(GL_TEXTURE_2D, sl->frame_tex[k][b]);
-        for (int l = 0; l < t->levels; l++) {
+        int coarse = first_cpu_level(t);
+        for (int l = 0; l < coarse; l++) {
             int lw = t->width >> l > 0 ? t->width >> l : 1;
             int lh = t->height >> l > 0 ? t->height >> l : 1;
             attach_level(blend_dest(sl, k), l);
@@ -240,4 +257,24 @@ void stream_gpu_slot(struct renderer *r, struct fs_slot *sl, const struct stream
     }
     glDisableVertexAttribArray(0);
     pass_restore(&saved);
+    /* the coarse levels on the CPU, uploaded (the top texel's moments stay in the buffer) */
+    glActiveTexture(GL_TEXTURE0 + (GLenum)u0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int k = 0; k < blend_kinds(sl); k++) {
+        const struct swell_table *t = blend_table(sl, k);
+        const struct chain_tex *c = blend_dest(sl, k);
+        uint8_t *buf = k == BLEND_SLOPE ? sl->slope_b : sl->wc_b;
+        int from = first_cpu_level(t);
+        if (k == BLEND_WC)
+            stream_blend_whitecap_coarse(t, ph, from, buf);
+        else
+            stream_blend_coarse(t, ph, from, buf);
+        for (int l = from; l < t->levels; l++) {
+            int lw = t->width >> l > 0 ? t->width >> l : 1;
+            int lh = t->height >> l > 0 ? t->height >> l : 1;
+            glBindTexture(GL_TEXTURE_2D, chain_at(c, l));
+            glTexSubImage2D(GL_TEXTURE_2D, c->levels ? 0 : l, 0, 0, lw, lh, GL_RGBA,
+                            GL_UNSIGNED_BYTE, buf + stream_level_offset(t, l));
+        }
+    }
 }

@@ -284,12 +284,9 @@ void stream_textures(struct renderer *r, double t_s)
         sl->phase = ph;
         sl->phase_valid = 1;
         if (r->gpu_blend) {
-            /* the GPU blends the chains (stream_gpu.c); the CPU the top texel alone, whose
-             * moments slot_constants takes */
+            /* the GPU blends the chains' fine levels, the CPU the coarse ones (stream_gpu.c),
+             * with the top texel whose moments slot_constants takes */
             stream_gpu_slot(r, sl, &ph);
-            stream_blend_top(sl->slope, &ph, sl->slope_b);
-            if (sl->wc_tex.tex[0])
-                stream_blend_whitecap_top(sl->wc, &ph, sl->wc_b);
             slot_constants(sl);
             continue;
         }

@@ -109,9 +109,11 @@ void stream_blend(const struct swell_table *t, const struct stream_phase *ph, ui
         blend_level(t, ph, l, dst);
 }
 
-void stream_blend_top(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst)
+void stream_blend_coarse(const struct swell_table *t, const struct stream_phase *ph, int from,
+                         uint8_t *dst)
 {
-    blend_level(t, ph, t->levels - 1, dst);
+    for (int l = from < 0 ? 0 : from; l < t->levels; l++)
+        blend_level(t, ph, l, dst);
 }
 
 uint16_t stream_wc_mix_factor(int w)
@@ -182,9 +184,11 @@ void stream_wc_blend_var(const struct swell_table *t, const struct stream_phase 
         wc_blend_var_level(t, ph, l, dst);
 }
 
-void stream_blend_whitecap_top(const struct swell_table *t, const struct stream_phase *ph,
-                               uint8_t *dst)
+void stream_blend_whitecap_coarse(const struct swell_table *t, const struct stream_phase *ph,
+                                  int from, uint8_t *dst)
 {
-    blend_level(t, ph, t->levels - 1, dst);
-    wc_blend_var_level(t, ph, t->levels - 1, dst);
+    for (int l = from < 0 ? 0 : from; l < t->levels; l++) {
+        blend_level(t, ph, l, dst);
+        wc_blend_var_level(t, ph, l, dst);
+    }
 }

@@ -34,9 +34,10 @@ size_t stream_level_offset(const struct swell_table *t, int level);
 /* dst = layer f0 + (layer f1 - layer f0) * w / STREAM_W_ONE, byte-wise, rounded to nearest, for
  * every level of an RGBA8 table. */
 void stream_blend(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst);
-/* stream_blend of the top (1x1) level alone, at its offset in dst (the renderer's per-frame
- * constants where the GPU blends the rest, render/stream_gpu.c) */
-void stream_blend_top(const struct swell_table *t, const struct stream_phase *ph, uint8_t *dst);
+/* stream_blend of the levels from `from` up alone, at their offsets in dst (where the GPU
+ * blends the finer ones, render/stream_gpu.c) */
+void stream_blend_coarse(const struct swell_table *t, const struct stream_phase *ph, int from,
+                         uint8_t *dst);
 
 /* A whitecap table's blend (TABLE_WHITECAP: m, <m^2>, 0, k) with, in channel 2 of levels 0 and
  * 1, the blend's own variance of the foam memory: a texel that is m0 in one frame and m1 in the
@@ -59,8 +60,8 @@ void stream_wc_blend_var(const struct swell_table *t, const struct stream_phase 
 /* The 1/256ths factor of weight w (0..STREAM_W_ONE) of stream_blend_whitecap: 4 (1 - w) w 256 /
  * 255 of the 16-bit squares' high bytes. */
 uint16_t stream_wc_mix_factor(int w);
-/* stream_blend_whitecap of the top level alone (as stream_blend_top) */
-void stream_blend_whitecap_top(const struct swell_table *t, const struct stream_phase *ph,
-                               uint8_t *dst);
+/* stream_blend_whitecap of the levels from `from` up alone (as stream_blend_coarse) */
+void stream_blend_whitecap_coarse(const struct swell_table *t, const struct stream_phase *ph,
+                                  int from, uint8_t *dst);
 
 #endif

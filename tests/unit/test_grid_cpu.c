@@ -171,20 +171,20 @@ static void check_stream_blend_whitecap(int width, int height, int levels)
     }
     print_message("whitecap blend %dx%d: channel 2 at most %.2f off (4 (1 - w) w d^2 / 255)\n",
                   width, height, worst);
-    /* the top level alone (render/stream_gpu.c's constants): the same bytes there, nothing
-     * else written */
+    /* the top level alone (render/stream_gpu.c blends the rest): the same bytes there,
+     * nothing else written */
     for (size_t k = 0; k < sizeof(ws) / sizeof(ws[0]); k++) {
         struct stream_phase ph = { .f0 = 2, .f1 = 0, .w = ws[k] };
         size_t top = stream_level_offset(&t, t.levels - 1), n = table_level_bytes(&t, t.levels - 1);
         stream_blend_whitecap(&t, &ph, ref);
         memset(dst, 0xa5, stream_blended_bytes(&t));
-        stream_blend_whitecap_top(&t, &ph, dst);
+        stream_blend_whitecap_coarse(&t, &ph, t.levels - 1, dst);
         assert_memory_equal(dst + top, ref + top, n);
         for (size_t i = 0; i < top; i++)
             assert_int_equal(dst[i], 0xa5);
         memset(dst, 0xa5, stream_blended_bytes(&t));
         stream_blend(&t, &ph, ref);
-        stream_blend_top(&t, &ph, dst);
+        stream_blend_coarse(&t, &ph, t.levels - 1, dst);
         assert_memory_equal(dst + top, ref + top, n);
         for (size_t i = 0; i < top; i++)
             assert_int_equal(dst[i], 0xa5);
