@@ -487,7 +487,10 @@ typedef struct swell_ocean_stats {
                                  * targets of its swell_upscale */
     uint64_t budget_bytes;      /* the budget it keeps within */
     int vertices, triangles;    /* of the sea's mesh */
-    uint64_t cpu_bytes_per_frame; /* bytes streamed to the GPU per draw */
+    uint64_t cpu_bytes_per_frame; /* bytes streamed to the GPU per draw: the vertices on the
+                                   * CPU's grid, and the tables' loop blend where the CPU
+                                   * blends it (not where the GPU does: a loop frame's tables
+                                   * are uploaded once, when the loop reaches it) */
     double camera_raise_m;      /* the last draw drew the camera this much higher, m: it was
                                  * less than 0.3 m above the water under it */
 } swell_ocean_stats;

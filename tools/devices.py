@@ -149,6 +149,8 @@ def program_name(vs, defines, fs=""):
             " objects" if objects else "")
     if fs.startswith("refl_copy"):
         return "reflection copy objects"
+    if fs.startswith("stream_blend"):
+        return "loop blend"
     if vs.startswith("upscale"):
         return "upscale"
     if vs.startswith("boat"):
@@ -300,6 +302,9 @@ def measure_shares(root, build, tables, tier, quality, detile, size, view, cache
         m = re.search(r"(\d+) vertices,", line)
         if m:
             verts = int(m.group(1))
+        m = re.search(r"blended on the GPU .*?(\d+) texels drawn a frame", line)
+        if m:   # the loop blend's draws (render/stream_gpu.c), whatever the frame's size
+            shares["_blend_texels"] = float(m.group(1))
     if p.returncode != 0 or not shares:
         sys.exit("devices: share run failed (%s): %s" % (" ".join(cmd), p.stdout[-400:]))
     cache[key] = (shares, verts)
@@ -326,7 +331,7 @@ def estimate(board, run, records, shares, verts, size, scale):
     """Frames per second by the cost model (BOARDS), or None where a program drawn has no cost
     statistic; with the ms per frame of fragment and vertex work. At a render scale below 1
     the shares are the scaled frame's and the stretch (one 'upscale' pass over every output
-    pixel) is added."""
+    pixel) is added; so are the loop blend's texels (render/stream_gpu.c, 'loop blend')."""
     cost = {}
     for r in records:
         if r["model"] == board["model"] and r["tier"] == run["tier"] and \
@@ -338,7 +343,7 @@ def estimate(board, run, records, shares, verts, size, scale):
     px, frag, vs = round(w * scale) * round(h * scale), 0.0, 0.0
     worst = 0
     for name, share in shares.items():
-        if name == "mixed":
+        if name == "mixed" or name.startswith("_"):
             continue
         prog = "sky" if name == "sky" else drawn_as(name, run["use"], have, run["tags"])
         c = cost.get((prog, "fragment")) if prog else None
@@ -349,6 +354,8 @@ def estimate(board, run, records, shares, verts, size, scale):
             vs = max(vs, cost.get((prog, "vertex")) or 0)
             worst = max(worst, c)
     frag += shares.get("mixed", 0.0) * px * worst   # drawn twice: at the costliest
+    if shares.get("_blend_texels"):
+        frag += shares["_blend_texels"] * (cost.get(("loop blend", "fragment")) or 0.0)
     if scale < 1:
         c = cost.get(("upscale", "fragment"))
         if c is None:
@@ -609,7 +616,13 @@ def cost_doc(estimates):
               "output's; at a render scale below 1 (swell --scale, src/render/upscale.h) the frame is "
               "shaded at the size in brackets and stretched over the output, the stretch's "
               "cost (the 'upscale' program over every output pixel) included: the trade "
-              "offered where a target is missed, a blurrier picture for fewer pixels shaded.",
+              "offered where a target is missed, a blurrier picture for fewer pixels shaded. "
+              "The loop blend's draws are included at every size (the 'loop blend' program "
+              "over the texels swell says it draws a frame, src/render/stream_gpu.c: 87 040 in "
+              "low quality, 130 560 in high with the default budget's tables; 1.4 ms of "
+              "Mali-400 MP2 high, 1.3 ms of VideoCore IV high, where the CPU's blend cost "
+              "no GPU time but 0.46-0.9 M CPU instructions and a 722 KiB upload a frame; "
+              "SWELL_LOOP_BLEND=cpu takes that instead).",
               "", "| board | tier asked | tier | quality | size | fps default (slowest) | ms "
               "fragment / vertex (default) | target | |", "|---|---|---|---|---|---|---|---|---|"]
     groups = {}

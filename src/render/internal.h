@@ -232,6 +232,7 @@ struct renderer {
     uint64_t stream_bytes;
     int gpu_blend;                    /* 1: the loop blend drawn on the GPU (stream_gpu.c) */
     const char *gpu_blend_why;        /* why not, where it is not */
+    long blend_texels;                /* the GPU blend's texels drawn a loop step */
     struct shader_program blendp;     /* stream_blend.frag */
     GLint blend_u[3];
     GLuint blend_fbo;

@@ -333,12 +333,15 @@ void renderer_get_stats(const struct renderer *r, struct renderer_stats *out)
 
 void renderer_describe(const struct renderer *r, char *buf, size_t size)
 {
+    char blend_note[64] = "";
+    if (r->gpu_blend)
+        snprintf(blend_note, sizeof blend_note, ", %ld texels drawn a frame", r->blend_texels);
     int n = snprintf(buf, size,
         "tier: %s (%d texture units)\n"
         "geometry: %s, %s, %d vertices\n"
         "patterns: %d in the fragment shader, %d resolved per vertex (mask 0x%x), whitecaps "
         "per vertex of mask 0x%x\n"
-        "loop frames: %s%s%s%s, %llu bytes of textures in a step's blend\n"
+        "loop frames: %s%s%s%s%s, %llu bytes of textures in a step's blend\n"
         "fetches: per run of rows only the patterns whose mip means still vary there; "
         "whitecaps of %d pattern(s); %s\n"
         "tiles: %s\n"
@@ -359,6 +362,7 @@ void renderer_describe(const struct renderer *r, char *buf, size_t size)
                        "frame's chain uploaded when the phase reaches it)"
                      : "blended on the CPU and uploaded",
         r->gpu_blend ? "" : " (", r->gpu_blend ? "" : r->gpu_blend_why, r->gpu_blend ? "" : ")",
+        blend_note,
         (unsigned long long)r->stream_bytes, r->nwc,
         r->run_lod ? "one level per run, by binding that level's own texture (software "
                      "rasteriser: per-pixel LOD is its slow path)"

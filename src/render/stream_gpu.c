@@ -183,6 +183,14 @@ void stream_gpu_create(struct renderer *r)
         return use_cpu(r, "a GL error setting the GPU's loop blend up");
     r->gpu_blend = 1;
     r->gpu_blend_why = NULL;
+    r->blend_texels = 0;
+    for (int s = 0; s < r->nfs; s++)
+        for (int k = 0; k < blend_kinds(&r->slot[s]); k++) {
+            const struct swell_table *t = blend_table(&r->slot[s], k);
+            for (int l = 0; l < first_cpu_level(t); l++)
+                r->blend_texels += (long)(t->width >> l > 0 ? t->width >> l : 1) *
+                                   (t->height >> l > 0 ? t->height >> l : 1);
+        }
 }
 
 /* Frame f of table t as baked into texture tex, every level (the table holds level-major
