@@ -381,6 +381,10 @@ int  pass_target_create(struct renderer *r, struct pass_target *t, int w, int h,
 void pass_target_destroy(struct renderer *r, struct pass_target *t);
 void pass_target_bind(const struct pass_target *t);
 void pass_save(struct pass_saved *s);
+/* A pass of quads drawn by the renderer into fbo (the loop blend, the reflection atlas's
+ * copy): no blending, depth test, culling or scissor, program in use, the renderer's quad as
+ * attribute 0 (the caller disables it after). */
+void pass_quad_begin(const struct renderer *r, GLuint fbo, GLuint program);
 void pass_restore(const struct pass_saved *s);
 int  pass_none_create(struct renderer *r, GLuint *tex, const char *what, struct swell_err *err);
 /* The size of a view pass's map for a viewport (half of it, POT, 32..512). */

@@ -93,6 +93,19 @@ void pass_save(struct pass_saved *s)
     s->scissor = glIsEnabled(GL_SCISSOR_TEST);
 }
 
+void pass_quad_begin(const struct renderer *r, GLuint fbo, GLuint program)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glUseProgram(program);
+    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+}
+
 void pass_restore(const struct pass_saved *s)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)s->fbo);

@@ -255,16 +255,8 @@ int renderer_reflection_end(struct renderer *r, struct swell_err *err)
     glActiveTexture(GL_TEXTURE0 + (GLenum)(r->d.texture_unit_first + UNIT_REFLECT));
     glBindTexture(GL_TEXTURE_2D, r->refl.tex);
     glGenerateMipmap(GL_TEXTURE_2D);
-    glBindFramebuffer(GL_FRAMEBUFFER, r->refl_atlas_fbo);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
-    glUseProgram(r->refl_copy.program);
+    pass_quad_begin(r, r->refl_atlas_fbo, r->refl_copy.program);
     glUniform1i(r->refl_copy_u[0], r->d.texture_unit_first + UNIT_REFLECT);
-    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     int top = log2i(r->refl.h);   /* versions stop where a row is the whole level */
     for (int l = 0; l < r->refl.levels && l <= top; l++)
         for (int m = 0; m <= REFL_RIP_M && l + m <= top; m++) {

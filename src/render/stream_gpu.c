@@ -232,17 +232,9 @@ void stream_gpu_slot(struct renderer *r, struct fs_slot *sl, const struct stream
     int u0 = r->d.texture_unit_first;
     float w = (float)ph->w / (float)STREAM_W_ONE;
     pass_save(&saved);
-    glBindFramebuffer(GL_FRAMEBUFFER, r->blend_fbo);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
-    glUseProgram(r->blendp.program);
+    pass_quad_begin(r, r->blend_fbo, r->blendp.program);
     glUniform1i(r->blend_u[0], u0);
     glUniform1i(r->blend_u[1], u0 + 1);
-    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     for (int k = 0; k < blend_kinds(sl); k++) {
         const struct swell_table *t = blend_table(sl, k);
         int f0 = ph->f0 < t->layers ? ph->f0 : 0, f1 = ph->f1 < t->layers ? ph->f1 : 0, a, b;
