@@ -10,9 +10,10 @@
  * stream_blend.frag): a frame's chain is uploaded once when the phase reaches it (every
  * T_i / F seconds, T_i the pattern's period); the CPU blends and uploads only the levels under
  * GPU_BLEND_MIN texels, with the top texel whose moments the renderer's per-frame constants
- * need (textures.c slot_constants). What it costs
- * the GPU: two nearest fetches and five operations per texel of the chains, 4/3 of 128 x 128 per
- * table (1/9 of a 640x360 frame's pixels for the eight tables of high quality), and the two
+ * need (textures.c slot_constants). What it costs the GPU: two nearest fetches and five
+ * operations per texel of the levels it draws (87 040 texels a frame in low quality, 130 560
+ * in high with the default budget's 128 x 128 tables: a seventh of a 1280x720 frame's pixels;
+ * renderer_describe prints the count, tools/devices.py's cost model adds it), and the two
  * sources' memory per table.
  *
  * GLES 2 draws only into level 0 of a texture without OES_fbo_render_mipmap (GLES 3 and every
