@@ -349,8 +349,7 @@ static inline void write_quad(float *restrict vx, const float *restrict rx,
 {
     f4 x = ld4(rx), y = ld4(ry);
     f4 r2 = x * x + y * y;
-    for (int e = 0; e < 4; e++)
-        zz[e] -= sphere_drop(r2[e]);   /* the sea's drop on a sphere (camera.h) */
+    zz -= sphere_drop4(r2);   /* the sea's drop on a sphere (camera.h) */
     f4 xy_lo = __builtin_shufflevector(x, y, 0, 4, 1, 5), xy_hi = __builtin_shufflevector(x, y, 2, 6, 3, 7);
     f4 zx_lo = __builtin_shufflevector(zz, x, 0, 4, 1, 5), zx_hi = __builtin_shufflevector(zz, x, 2, 6, 3, 7);
     write_one(vx, __builtin_shufflevector(xy_lo, zx_lo, 0, 1, 4, 5) + ld4(d), y[0], cpu);
