@@ -51,9 +51,15 @@ static inline f4 ld4(const float *p)
  * instruction that does exactly that, MAXPS (GCC does not fold the select into it): grid_update
  * at the surface, rough, gles2-min low quality, 2.049 -> 1.996 M instructions a frame
  * (tools/cg-frame.sh). */
+#if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
+#define GRID_SSE 1   /* GCC/Clang's SSE builtins (x86-64 always); ARM keeps the portable code */
+#else
+#define GRID_SSE 0
+#endif
+
 static inline f4 max4(f4 a, f4 b)
 {
-#if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
+#if GRID_SSE
     return __builtin_ia32_maxps(a, b);
 #else
     i32x4 gt = a > b, ia, ib;
@@ -70,17 +76,16 @@ static inline f4 max4(f4 a, f4 b)
  * vertex before */
 static inline f4 sphere_drop4(f4 r2)
 {
+#if GRID_SSE
     const f4 rr = { EARTH_R2, EARTH_R2, EARTH_R2, EARTH_R2 };
     const f4 r = { (float)EARTH_RADIUS_M, (float)EARTH_RADIUS_M, (float)EARTH_RADIUS_M,
                    (float)EARTH_RADIUS_M };
-    f4 q = max4(rr - r2, (f4){ 0.0f, 0.0f, 0.0f, 0.0f });
-#if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
-    q = __builtin_ia32_sqrtps(q);
+    return r2 / (r + __builtin_ia32_sqrtps(max4(rr - r2, (f4){ 0.0f, 0.0f, 0.0f, 0.0f })));
 #else
     for (int e = 0; e < 4; e++)
-        q[e] = sqrtf(q[e]);
+        r2[e] = sphere_drop(r2[e]);
+    return r2;
 #endif
-    return r2 / (r + q);
 }
 
 /* A blended, dequantised level of a table as float4 texels, with its first column and row
