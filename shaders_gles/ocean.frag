@@ -183,6 +183,19 @@ float g_mu;
 float g_kvar;
 float g_dvar;                       // the foam memory's variance drawn as detail (add_whitecap)
 vec2 g_dsw;                         // g_ds of the slots up to the last with whitecaps
+#if defined(QUALITY_HIGH) && defined(SWELL_ORDER_FETCHES)
+// The fetches in order (issue 15; gpu.c order_fetches: VideoCore VI): SERIAL(uv) is uv plus the
+// sums so far times a uniform never set, so 0 (GLES: a program's uniforms start at 0), which
+// no compiler can fold. Each slot's taps then wait for the slot before, and the compiler no
+// longer hoists every slot's fetches and lattice terms to the start of the program, all live
+// at once: v3d spilled in every high-quality program with three or four slots or with the
+// objects' fetches (5-41 spills), none now, and its 4-slot program fell from 1272 to 937
+// instructions.
+uniform float serial_zero;
+#define SERIAL(uv) (uv + vec2((g_var.x + g_kvar) * serial_zero))
+#else
+#define SERIAL(uv) (uv)
+#endif
 
 // No pattern repeats on its tile (detile.h): a slot's tables are read at the three random
 // offsets of its lattice triangle, with weights g_tw (normalised: sum g_tw^2 = 1) and uv
@@ -492,7 +505,7 @@ vec4 wake_sample()
                    0.5 + pq.y / (p + wake_warp.w));
     float in_map = step(0.0, h.z) * step(0.0, pq.x) * step(pq.x, 1.0) * step(0.0, uv.y) *
                    step(uv.y, 1.0);
-    vec4 t = texture2D(wake_tex, uv);
+    vec4 t = texture2D(wake_tex, SERIAL(uv));
     vec2 s = t.r * wake_rot.xy + t.g * wake_rot.zw + wake_k.xy;
     return in_map * vec4(s, max(t.b * wake_k.z - dot(s, s), 0.0), t.a);
 }
@@ -506,7 +519,7 @@ vec4 wake_sample()
 float mask_amp()
 {
     vec3 h = mask_mat * vec3(gl_FragCoord.xy, 1.0);
-    float a = texture2D(fresnel_tex, clamp(h.xy / max(h.z, 1e-3), mask_box.xy, mask_box.zw)).a;
+    float a = texture2D(fresnel_tex, SERIAL(clamp(h.xy / max(h.z, 1e-3), mask_box.xy, mask_box.zw))).a;
     return mix(1.0, a, step(0.0, h.z));
 }
 #endif
@@ -536,7 +549,7 @@ float shadow_at()
     vec3 h = shadow_mat * vec3(gl_FragCoord.xy, 1.0);
     vec2 uv = h.xy / max(h.z, 1e-3);
     vec2 in_uv = step(vec2(0.0), uv) * step(uv, vec2(1.0));
-    return step(0.0, h.z) * in_uv.x * in_uv.y * texture2D(shadow_tex, uv).a;
+    return step(0.0, h.z) * in_uv.x * in_uv.y * texture2D(shadow_tex, SERIAL(uv)).a;
 }
 #endif
 
@@ -558,21 +571,21 @@ void main()
 #endif
 #endif
 #if FS_PATTERNS > 1
-    SLOPE(1, slope_tex1, v_uv01.zw);
+    SLOPE(1, slope_tex1, SERIAL(v_uv01.zw));
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 1
-    WHITECAP(1, wc_tex1, v_uv01.zw);
+    WHITECAP(1, wc_tex1, SERIAL(v_uv01.zw));
 #endif
 #endif
 #if FS_PATTERNS > 2
-    SLOPE(2, slope_tex2, v_uv23.xy);
+    SLOPE(2, slope_tex2, SERIAL(v_uv23.xy));
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 2
-    WHITECAP(2, wc_tex2, v_uv23.xy);
+    WHITECAP(2, wc_tex2, SERIAL(v_uv23.xy));
 #endif
 #endif
 #if FS_PATTERNS > 3
-    SLOPE(3, slope_tex3, v_uv23.zw);
+    SLOPE(3, slope_tex3, SERIAL(v_uv23.zw));
 #if defined(QUALITY_HIGH) && FS_WHITECAPS > 3
-    WHITECAP(3, wc_tex3, v_uv23.zw);
+    WHITECAP(3, wc_tex3, SERIAL(v_uv23.zw));
 #endif
 #endif
 #ifdef SWELL_MASK

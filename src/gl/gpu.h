@@ -32,6 +32,7 @@ struct gpu_caps {
     int prefer_highp;           /* fragment shaders use highp: software rasteriser (gpu.c) */
     int prefer_run_lod;         /* pattern fetches at one whole level per draw: software
                                  * rasteriser (gpu.c) */
+    int order_fetches;          /* ocean.frag SWELL_ORDER_FETCHES: Broadcom V3D 4.x (gpu.c) */
     int glsl100_derivatives;    /* #version 100 shaders may enable GL_OES_standard_derivatives */
     int glsl100_texture_lod;    /* #version 100 shaders may enable GL_EXT_shader_texture_lod */
     int fbo_render_mipmap;      /* a framebuffer may draw into any mip level of a texture

@@ -109,9 +109,10 @@ int build_programs(struct renderer *r, struct swell_err *err)
     od.attrib_count = (int)(sizeof(ocean_attribs) / sizeof(ocean_attribs[0]));
     for (int k = 0; k <= r->nfs; k++) {
         for (int kw = 0; kw <= (k < r->nwc ? k : r->nwc); kw++) {
-            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s%s%s%s",
+            int n = snprintf(defines, sizeof(defines), "FS_PATTERNS=%d FS_WHITECAPS=%d%s%s%s%s%s%s%s%s%s%s%s",
                              k, kw, r->d.quality == QUALITY_HIGH ? " QUALITY_HIGH" : "",
                              r->run_lod ? " SWELL_RUN_LOD" : "",
+                             r->gpu->caps.order_fetches ? " SWELL_ORDER_FETCHES" : "",
                              renderer_detile(r) ? "" : " SWELL_NO_DETILE",
                              r->d.linear_output ? " SWELL_LINEAR_OUT" : "",
                              r->d.slope_output ? " SWELL_SLOPE_OUT" : "",
