@@ -47,6 +47,19 @@ int gpu_default_tier(const char *renderer, int available, const char **why)
     return available;
 }
 
+int gpu_orders_fetches(const char *renderer)
+{
+    /* Broadcom's V3D 4.x (Raspberry Pi 4; Mesa's v3d) allocates registers for two threads at
+     * least and spills past them: its compiler hoisted every pattern slot's fetches and
+     * lattice terms to the start of the high-quality programs, all live at once, and spilled
+     * in every one with three or four slots or the objects' fetches. With each slot's fetches
+     * made to wait for the slot before (ocean.frag SWELL_ORDER_FETCHES) none spills and the
+     * 4-slot program is 26 % shorter (make test-devices, docs/devices.md). Elsewhere the same
+     * order cost 3-10 % more instructions (Adreno, Mali, Vivante) or made vc4 (VC4 V3D 2.1,
+     * the Raspberry Pi 0-3, whose register allocator cannot spill) refuse more programs. */
+    return strstr(renderer, "V3D") && !strstr(renderer, "VC4");
+}
+
 int gpu_tier_from_name(const char *name)
 {
     return parse_name(tier_names, 0, TIER_COUNT, name);
@@ -196,15 +209,7 @@ int gpu_init(struct gpu *g, int forced_tier, uint64_t budget_bytes, struct swell
      * as that level's own texture without mips (renderer.c chain_tex), on every tier; GPUs
      * keep the per-pixel LOD, free there. */
     c->prefer_run_lod = software;
-    /* Broadcom's V3D 4.x (Raspberry Pi 4; Mesa's v3d) allocates registers for two threads at
-     * least and spills past them: its compiler hoisted every pattern slot's fetches and lattice
-     * terms to the start of the high-quality programs, all live at once, and spilled in every
-     * one with three or four slots or the objects' fetches. With each slot's fetches made to
-     * wait for the slot before (ocean.frag SWELL_ORDER_FETCHES) none spills and the 4-slot
-     * program is 26 % shorter (make test-devices, docs/devices.md). Elsewhere the same order
-     * cost 3-10 % more instructions (Adreno, Mali, Vivante) or made vc4 (VC4 V3D 2.1, the
-     * Raspberry Pi 0-3, whose register allocator cannot spill) refuse more programs. */
-    c->order_fetches = strstr(c->renderer, "V3D") && !strstr(c->renderer, "VC4");
+    c->order_fetches = gpu_orders_fetches(c->renderer);
     /* A shader's LOD bias is clamped to [-MAX_TEXTURE_LOD_BIAS, MAX_TEXTURE_LOD_BIAS] (GLES 3.0
      * §3.8.10: at least 2; EXT_texture_lod_bias for GLES 2); ocean.frag's gles2-min sky filter
      * keeps its biases within it. GLES 2 without the extension cannot say: assumed 16, what

@@ -32,7 +32,7 @@ struct gpu_caps {
     int prefer_highp;           /* fragment shaders use highp: software rasteriser (gpu.c) */
     int prefer_run_lod;         /* pattern fetches at one whole level per draw: software
                                  * rasteriser (gpu.c) */
-    int order_fetches;          /* ocean.frag SWELL_ORDER_FETCHES: Broadcom V3D 4.x (gpu.c) */
+    int order_fetches;          /* ocean.frag SWELL_ORDER_FETCHES: V3D 4.x (gpu_orders_fetches) */
     int glsl100_derivatives;    /* #version 100 shaders may enable GL_OES_standard_derivatives */
     int glsl100_texture_lod;    /* #version 100 shaders may enable GL_EXT_shader_texture_lod */
     int fbo_render_mipmap;      /* a framebuffer may draw into any mip level of a texture
@@ -64,6 +64,8 @@ int gpu_tier_from_name(const char *name);  /* TIER_* or -1 */
  * GL_RENDERER is `renderer`: `available` but where a lower one is faster on that GPU (*why
  * then says which and why; else untouched). */
 int gpu_default_tier(const char *renderer, int available, const char **why);
+/* Whether ocean.frag orders its fetches on this device (GL_RENDERER), gpu_caps.order_fetches. */
+int gpu_orders_fetches(const char *renderer);
 /* Fragment shaders of this tier can give an explicit LOD: GLSL ES 3.00 (the gles3 tier) or
  * GL_EXT_shader_texture_lod in #version 100 shaders (shader.c's SWELL_HAS_TEXTURE_LOD). */
 int gpu_fragment_texture_lod(const struct gpu_caps *c);

@@ -70,6 +70,19 @@ static void test_default_tier(void **state)
     assert_null(why);
 }
 
+/* The fetch order of ocean.frag (SWELL_ORDER_FETCHES) on V3D 4.x alone: not on vc4, whose
+ * renderer string also names V3D, nor on the other GPUs or llvmpipe. */
+static void test_order_fetches(void **state)
+{
+    (void)state;
+    assert_true(gpu_orders_fetches("V3D 4.2"));
+    assert_true(gpu_orders_fetches("V3D 7.1"));
+    assert_false(gpu_orders_fetches("VC4 V3D 2.1"));
+    assert_false(gpu_orders_fetches("Mali450"));
+    assert_false(gpu_orders_fetches("FD630"));
+    assert_false(gpu_orders_fetches("llvmpipe (LLVM 15.0.6, 256 bits)"));
+}
+
 static void test_header_per_tier(void **state)
 {
     (void)state;
@@ -259,6 +272,7 @@ int main(void)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_default_tier),
+        cmocka_unit_test(test_order_fetches),
         cmocka_unit_test(test_header_per_tier),
         cmocka_unit_test(test_includes_and_lines),
         cmocka_unit_test(test_include_errors),
