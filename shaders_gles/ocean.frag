@@ -184,13 +184,9 @@ float g_kvar;
 float g_dvar;                       // the foam memory's variance drawn as detail (add_whitecap)
 vec2 g_dsw;                         // g_ds of the slots up to the last with whitecaps
 #if defined(QUALITY_HIGH) && defined(SWELL_ORDER_FETCHES)
-// The fetches in order (issue 15; gpu.c order_fetches: VideoCore VI): SERIAL(uv) is uv plus the
-// sums so far times a uniform never set, so 0 (GLES: a program's uniforms start at 0), which
-// no compiler can fold. Each slot's taps then wait for the slot before, and the compiler no
-// longer hoists every slot's fetches and lattice terms to the start of the program, all live
-// at once: v3d spilled in every high-quality program with three or four slots or with the
-// objects' fetches (5-41 spills), none now, and its 4-slot program fell from 1272 to 937
-// instructions.
+// The fetches in order (issue 15; on which GPU and why: gpu.c gpu_orders_fetches): SERIAL(uv)
+// is uv plus the sums so far times a uniform never set, so 0 (GLES: a program's uniforms start
+// at 0), which no compiler can fold; each slot's taps then wait for the slot before.
 uniform float serial_zero;
 #define SERIAL(uv) (uv + vec2((g_var.x + g_kvar) * serial_zero))
 #else
